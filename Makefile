@@ -1,0 +1,54 @@
+# liftmap: the two commands of the README's quick start are `make demo` and `make test`.
+# Both install the Debian packages they need (scripts/install-deps.sh) and build first.
+
+BUILD      ?= build
+BUILD_ASAN ?= build-asan
+JOBS       ?= 2
+LIFTMAP    := $(BUILD)/app/liftmap
+SOURCES    := $(shell find src app tests bench -name '*.cpp' -o -name '*.h' 2>/dev/null)
+
+.PHONY: all deps meshes build build-asan test test-release test-asan demo bench lint format clean
+
+all: build
+
+deps:
+	@./scripts/install-deps.sh
+
+meshes: deps
+	@./scripts/get-meshes.sh
+
+$(BUILD)/build.ninja: CMakeLists.txt
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+
+build: deps $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS)
+
+$(BUILD_ASAN)/build.ninja: CMakeLists.txt
+	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLIFTMAP_SANITIZE=ON
+
+build-asan: deps $(BUILD_ASAN)/build.ninja
+	cmake --build $(BUILD_ASAN) -j $(JOBS)
+
+# The whole suite in Release, then again under AddressSanitizer + UndefinedBehaviorSanitizer (tests labelled
+# `slow` run in Release only).
+test: meshes build build-asan
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow
+
+demo: meshes build
+	./scripts/demo.sh $(LIFTMAP)
+
+bench: meshes build
+	./bench/run.sh $(BUILD)
+
+# Formatting and static analysis, as checked by CI.
+lint: build
+	clang-format --dry-run --Werror $(SOURCES)
+	clang-tidy -p $(BUILD) --quiet $(filter %.cpp,$(filter src/% app/%,$(SOURCES)))
+
+format:
+	clang-format -i $(SOURCES)
+
+clean:
+	rm -rf $(BUILD) $(BUILD_ASAN)

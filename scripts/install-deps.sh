@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs the Debian packages liftmap needs to build, test and benchmark. Idempotent: runs apt-get only when a
+# package is missing. Needs root (or sudo) on a Debian 12 machine.
+set -euo pipefail
+packages=(
+  cmake ninja-build g++ make pkg-config
+  libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libgtest-dev libcli11-dev nlohmann-json3-dev libstb-dev
+  python3 python3-numpy python3-cvxopt
+  clang-format clang-tidy
+)
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,73 @@
+#include "core/surface_point.h"
+
+#include <cassert>
+
+namespace liftmap {
+
+SurfacePoint SurfacePoint::at_vertex(VertexId v) {
+  SurfacePoint p;
+  p.kind = Kind::kVertex;
+  p.vertex = v;
+  return p;
+}
+
+SurfacePoint SurfacePoint::on_edge(EdgeId e, double t) {
+  SurfacePoint p;
+  p.kind = Kind::kEdge;
+  p.edge = e;
+  p.t = t;
+  return p;
+}
+
+SurfacePoint SurfacePoint::in_face(FaceId f, const std::array<double, 3>& bary) {
+  SurfacePoint p;
+  p.kind = Kind::kFace;
+  p.face = f;
+  p.bary = bary;
+  return p;
+}
+
+Eigen::RowVectorXd interpolate(const Mesh& mesh, const Eigen::MatrixXd& X, const SurfacePoint& p) {
+  switch (p.kind) {
+    case SurfacePoint::Kind::kVertex:
+      return X.row(p.vertex.idx);
+    case SurfacePoint::Kind::kEdge: {
+      const HalfedgeId h = Mesh::halfedge(p.edge);
+      return (1.0 - p.t) * X.row(mesh.tail(h).idx) + p.t * X.row(mesh.head(h).idx);
+    }
+    case SurfacePoint::Kind::kFace: {
+      const auto fv = mesh.face_vertices(p.face);
+      return p.bary[0] * X.row(fv[0].idx) + p.bary[1] * X.row(fv[1].idx) + p.bary[2] * X.row(fv[2].idx);
+    }
+  }
+  return {};
+}
+
+SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p) {
+  if (p.kind == SurfacePoint::Kind::kFace) return p;
+  // Weight of each corner of the chosen face.
+  HalfedgeId h;
+  if (p.kind == SurfacePoint::Kind::kVertex) {
+    h = mesh.halfedge(p.vertex);
+  } else {
+    h = Mesh::halfedge(p.edge);
+    if (mesh.is_boundary(h)) h = Mesh::twin(h);
+  }
+  assert(h.valid() && !mesh.is_boundary(h));
+  const FaceId f = mesh.face(h);
+  const auto fh = mesh.face_halfedges(f);
+  std::array<double, 3> bary{0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    if (p.kind == SurfacePoint::Kind::kVertex) {
+      if (mesh.tail(fh[k]) == p.vertex) bary[k] = 1.0;
+    } else if (Mesh::edge(fh[k]) == p.edge) {
+      // fh[k] runs from corner k to corner k+1; edge parameter t is measured along Mesh::halfedge(edge).
+      const bool same = fh[k] == Mesh::halfedge(p.edge);
+      bary[k] = same ? 1.0 - p.t : p.t;
+      bary[(k + 1) % 3] = same ? p.t : 1.0 - p.t;
+    }
+  }
+  return SurfacePoint::in_face(f, bary);
+}
+
+}  // namespace liftmap

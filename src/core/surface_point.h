@@ -1,0 +1,35 @@
+#pragma once
+/// The one "point on a mesh" type of liftmap: landmarks, geodesic path nodes and map images are all
+/// SurfacePoints.
+
+#include <Eigen/Core>
+#include <array>
+
+#include "core/mesh.h"
+
+namespace liftmap {
+
+/// A point on a triangle mesh: at a vertex, on an edge, or inside a face.
+struct SurfacePoint {
+  enum class Kind { kVertex, kEdge, kFace };
+  Kind kind = Kind::kVertex;
+  VertexId vertex;  ///< kVertex
+  EdgeId edge;      ///< kEdge: the point (1 - t) * tail + t * head of `Mesh::halfedge(edge)`
+  double t = 0.0;
+  FaceId face;                          ///< kFace
+  std::array<double, 3> bary{0, 0, 0};  ///< kFace: weights of `face_vertices(face)`, summing to 1
+
+  static SurfacePoint at_vertex(VertexId v);
+  static SurfacePoint on_edge(EdgeId e, double t);
+  static SurfacePoint in_face(FaceId f, const std::array<double, 3>& bary);
+};
+
+/// Position of `p` given per-vertex data `X` (#V by k: 3D positions, a flattening, any attribute).
+Eigen::RowVectorXd interpolate(const Mesh& mesh, const Eigen::MatrixXd& X, const SurfacePoint& p);
+
+/// The same point expressed as a face point: a face containing it and barycentric coordinates in the order
+/// of `face_vertices`. A vertex or edge point picks one incident face (the first found).
+/// \pre the element of `p` has at least one incident face.
+SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p);
+
+}  // namespace liftmap

@@ -1,0 +1,293 @@
+#include "io/read_mesh.h"
+
+#include <CGAL/IO/PLY.h>
+#include <CGAL/IO/STL.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "core/errors.h"
+
+// OFF and OBJ are parsed here because their errors must name the line; CGAL's readers only say "failed".
+// PLY and STL (binary formats, where a line number means nothing) go through CGAL's readers.
+
+namespace liftmap {
+
+namespace {
+
+using Point = std::array<double, 3>;
+using Triangle = std::array<int, 3>;
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": is a directory, not a mesh file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot open file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError(path + ": read error");
+  return ss.str();
+}
+
+/// Splits text into lines and whitespace-separated tokens, keeping line numbers for messages.
+class LineReader {
+ public:
+  LineReader(const std::string& path, const std::string& text) : path_(path), text_(text) {}
+
+  /// Advances to the next line that has content (comments after '#' removed); false at end of file.
+  bool next_line() {
+    while (pos_ < text_.size()) {
+      size_t end = text_.find('\n', pos_);
+      if (end == std::string::npos) end = text_.size();
+      std::string_view line(text_.data() + pos_, end - pos_);
+      pos_ = end + 1;
+      ++line_no_;
+      for (char c : line) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u == 0 || (u < 32 && c != '\t' && c != '\r')) fail("not a text line (binary data?)");
+      }
+      if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+      tokens_.clear();
+      size_t i = 0;
+      while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        size_t j = i;
+        while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+        if (j > i) tokens_.push_back(line.substr(i, j - i));
+        i = j;
+      }
+      if (!tokens_.empty()) return true;
+    }
+    return false;
+  }
+
+  [[nodiscard]] const std::vector<std::string_view>& tokens() const { return tokens_; }
+  [[nodiscard]] int line_no() const { return line_no_; }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw IoError(path_ + ":" + std::to_string(line_no_) + ": " + what);
+  }
+
+  double to_double(std::string_view s) const {
+    double x = 0;
+    // from_chars does not accept a leading '+'.
+    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+    if (ec != std::errc() || p != s.data() + s.size()) fail("'" + std::string(s) + "' is not a number");
+    return x;
+  }
+
+  long long to_int(std::string_view s) const {
+    long long x = 0;
+    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+    if (ec != std::errc() || p != s.data() + s.size()) fail("'" + std::string(s) + "' is not an integer");
+    return x;
+  }
+
+ private:
+  const std::string& path_;
+  const std::string& text_;
+  size_t pos_ = 0;
+  int line_no_ = 0;
+  std::vector<std::string_view> tokens_;
+};
+
+TriangleMesh to_matrices(const std::vector<Point>& points, const std::vector<Triangle>& triangles) {
+  TriangleMesh m;
+  m.V.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (int k = 0; k < 3; ++k) m.V(static_cast<Eigen::Index>(i), k) = points[i][static_cast<size_t>(k)];
+  }
+  m.F.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) m.F(static_cast<Eigen::Index>(i), k) = triangles[i][static_cast<size_t>(k)];
+  }
+  return m;
+}
+
+TriangleMesh read_off(const std::string& path, const std::string& text) {
+  LineReader r(path, text);
+  if (!r.next_line()) throw IoError(path + ": empty file");
+  std::vector<std::string_view> header = r.tokens();
+  const std::string_view magic = header[0];
+  if (magic.size() < 3 || magic.substr(magic.size() - 3) != "OFF") r.fail("expected an 'OFF' header");
+  if (magic != "OFF" && magic != "COFF" && magic != "NOFF" && magic != "CNOFF") {
+    r.fail("'" + std::string(magic) + "' variant of OFF is not supported (use plain or colour OFF)");
+  }
+  if (header.size() > 1 && header[1] == "BINARY") r.fail("binary OFF is not supported");
+  header.erase(header.begin());
+  if (header.empty()) {
+    if (!r.next_line()) r.fail("missing the line with vertex and face counts");
+    header = r.tokens();
+  }
+  if (header.size() < 2) r.fail("expected 'vertices faces [edges]' counts");
+  const long long nv = r.to_int(header[0]);
+  const long long nf = r.to_int(header[1]);
+  if (nv < 0 || nf < 0) r.fail("negative vertex or face count");
+  // Never trust the counts for allocation: each vertex needs at least 6 bytes of text.
+  const auto max_items = static_cast<long long>(text.size() / 6 + 1);
+  if (nv > max_items || nf > max_items) {
+    r.fail("truncated or wrong counts: the header announces " + std::to_string(nv) + " vertices and " +
+           std::to_string(nf) + " faces, more than a file of " + std::to_string(text.size()) + " bytes can hold");
+  }
+  std::vector<Point> points;
+  points.reserve(static_cast<size_t>(nv));
+  for (long long i = 0; i < nv; ++i) {
+    if (!r.next_line()) {
+      throw IoError(path + ": truncated: the header announces " + std::to_string(nv) + " vertices, found " +
+                    std::to_string(i));
+    }
+    const auto& t = r.tokens();
+    if (t.size() < 3) r.fail("vertex " + std::to_string(i) + " needs 3 coordinates");
+    points.push_back({r.to_double(t[0]), r.to_double(t[1]), r.to_double(t[2])});
+  }
+  std::vector<Triangle> triangles;
+  triangles.reserve(static_cast<size_t>(nf));
+  for (long long i = 0; i < nf; ++i) {
+    if (!r.next_line()) {
+      throw IoError(path + ": truncated: the header announces " + std::to_string(nf) + " faces, found " +
+                    std::to_string(i));
+    }
+    const auto& t = r.tokens();
+    const long long n = r.to_int(t[0]);
+    if (n != 3) {
+      r.fail("face " + std::to_string(i) + " has " + std::to_string(n) +
+             " vertices; only triangle meshes are supported");
+    }
+    if (t.size() < 4) r.fail("face " + std::to_string(i) + " lists fewer than 3 vertex indices");
+    Triangle tri{};
+    for (int k = 0; k < 3; ++k) {
+      const long long v = r.to_int(t[static_cast<size_t>(k + 1)]);
+      if (v < 0 || v >= nv) {
+        r.fail("face " + std::to_string(i) + " references vertex " + std::to_string(v) + ", but there are " +
+               std::to_string(nv) + " vertices");
+      }
+      tri[static_cast<size_t>(k)] = static_cast<int>(v);
+    }
+    triangles.push_back(tri);
+  }
+  return to_matrices(points, triangles);
+}
+
+TriangleMesh read_obj(const std::string& path, const std::string& text) {
+  LineReader r(path, text);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  while (r.next_line()) {
+    const auto& t = r.tokens();
+    const std::string_view key = t[0];
+    if (key == "v") {
+      if (t.size() < 4) r.fail("vertex needs 3 coordinates");
+      points.push_back({r.to_double(t[1]), r.to_double(t[2]), r.to_double(t[3])});
+    } else if (key == "f") {
+      if (t.size() != 4) {
+        r.fail("face has " + std::to_string(t.size() - 1) + " vertices; only triangle meshes are supported");
+      }
+      Triangle tri{};
+      for (int k = 0; k < 3; ++k) {
+        std::string_view s = t[static_cast<size_t>(k + 1)];
+        s = s.substr(0, s.find('/'));  // "v", "v/vt", "v//vn", "v/vt/vn": the vertex index comes first
+        const long long idx = r.to_int(s);
+        const auto n = static_cast<long long>(points.size());
+        // OBJ indices are 1-based; negative ones count back from the last vertex read so far.
+        const long long v = idx > 0 ? idx - 1 : n + idx;
+        if (idx == 0 || v < 0 || v >= n) {
+          r.fail("face references vertex " + std::to_string(idx) + ", but " + std::to_string(n) +
+                 " vertices are defined before it");
+        }
+        tri[static_cast<size_t>(k)] = static_cast<int>(v);
+      }
+      triangles.push_back(tri);
+    } else if (key == "vt" || key == "vn" || key == "vp" || key == "o" || key == "g" || key == "s" || key == "usemtl" ||
+               key == "mtllib" || key == "l" || key == "p") {
+      continue;  // attributes and grouping carry no geometry liftmap uses
+    } else {
+      r.fail("unknown OBJ statement '" + std::string(key) + "'");
+    }
+  }
+  if (points.empty() && triangles.empty()) throw IoError(path + ": empty file (no vertices, no faces)");
+  return to_matrices(points, triangles);
+}
+
+template <class ReadFn>
+TriangleMesh read_with_cgal(const std::string& path, const std::string& format, ReadFn read) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot open file");
+  std::vector<CGAL::Simple_cartesian<double>::Point_3> cgal_points;
+  std::vector<std::vector<std::size_t>> polygons;
+  // CGAL's readers print their own diagnostics to std::cerr; ours below is the one the user should see.
+  std::ostringstream cgal_diagnostics;
+  std::streambuf* const cerr_buffer = std::cerr.rdbuf(cgal_diagnostics.rdbuf());
+  const bool ok = read(in, cgal_points, polygons);
+  std::cerr.rdbuf(cerr_buffer);
+  if (!ok) {
+    throw IoError(path + ": not a valid " + format + " file (truncated, wrong counts or corrupt data)");
+  }
+  std::vector<Point> points;
+  points.reserve(cgal_points.size());
+  for (const auto& p : cgal_points) points.push_back({p.x(), p.y(), p.z()});
+  std::vector<Triangle> triangles;
+  triangles.reserve(polygons.size());
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    const auto& poly = polygons[i];
+    if (poly.size() != 3) {
+      throw IoError(path + ": face " + std::to_string(i) + " has " + std::to_string(poly.size()) +
+                    " vertices; only triangle meshes are supported");
+    }
+    Triangle tri{};
+    for (size_t k = 0; k < 3; ++k) {
+      if (poly[k] >= points.size()) {
+        throw IoError(path + ": face " + std::to_string(i) + " references vertex " + std::to_string(poly[k]) +
+                      ", but there are " + std::to_string(points.size()) + " vertices");
+      }
+      tri[k] = static_cast<int>(poly[k]);
+    }
+    triangles.push_back(tri);
+  }
+  return to_matrices(points, triangles);
+}
+
+}  // namespace
+
+TriangleMesh read_mesh(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
+    throw IoError(path + ": unknown mesh format '" + ext + "' (expected .off, .obj, .ply or .stl)");
+  }
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw IoError(path + ": no such file");
+  TriangleMesh mesh;
+  if (ext == ".off" || ext == ".obj") {
+    const std::string text = read_file(path);
+    mesh = ext == ".off" ? read_off(path, text) : read_obj(path, text);
+  } else {
+    if (std::filesystem::file_size(path, ec) == 0) throw IoError(path + ": empty file");
+    if (ext == ".ply") {
+      mesh = read_with_cgal(
+          path, "PLY", [](std::istream& in, auto& pts, auto& polys) { return CGAL::IO::read_PLY(in, pts, polys); });
+    } else {
+      mesh = read_with_cgal(
+          path, "STL", [](std::istream& in, auto& pts, auto& polys) { return CGAL::IO::read_STL(in, pts, polys); });
+    }
+  }
+  if (mesh.F.rows() == 0) throw IoError(path + ": the file contains no complete face (truncated?)");
+  return mesh;
+}
+
+}  // namespace liftmap
