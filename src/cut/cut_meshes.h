@@ -1,0 +1,59 @@
+#pragma once
+/// Step 1 of the pipeline (paper §3.4): cut both meshes to disks along a common tree of paths through the
+/// landmarks, with a vertex-to-vertex correspondence nu of the two boundaries.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/surface_point.h"
+
+namespace liftmap {
+
+/// Options of `cut_meshes`.
+struct CutOptions {
+  enum class Tree {
+    kMinimumSpanning,  ///< minimum spanning tree on dist_M + dist_N (the paper's choice)
+    kPath,             ///< a path through all landmarks (maximum degree 2)
+  };
+  Tree tree = Tree::kMinimumSpanning;
+  bool geodesic_paths = true;  ///< search paths across faces and straighten them toward geodesics; if false,
+                               ///< paths are shortest edge paths (cheaper, about 5-15% longer)
+  double snap = 0.1;          ///< boundary vertices closer than this fraction of an edge are paired, not inserted
+};
+
+/// One mesh after cutting.
+struct CutSide {
+  Eigen::MatrixXd V;                    ///< #Vr by 3 positions of the refined mesh (paths run along its edges)
+  Eigen::MatrixXi F;                    ///< #F by 3 faces of the refined mesh (closed)
+  std::vector<SurfacePoint> on_input;   ///< #Vr: each refined vertex as a face point of the input mesh
+  Eigen::VectorXi face_to_input;        ///< #F: the input face containing each refined face
+  Eigen::MatrixXi F_cut;                ///< #F by 3 faces of the cut mesh (a disk); face i is refined face i
+  Eigen::VectorXi cut_to_refined;       ///< #Vc: each cut vertex's refined vertex
+  std::vector<int> landmarks;           ///< k: refined vertex of each landmark
+  std::vector<std::vector<int>> paths;  ///< per tree edge, refined vertices from child to parent landmark
+  std::vector<double> path_lengths;     ///< per tree edge, length of its path
+};
+
+/// The two cut disks and their boundary correspondence.
+struct CutResult {
+  CutSide a, b;
+  std::vector<std::array<int, 2>> tree;  ///< k - 1 tree edges {parent, child} (landmark indices)
+  std::vector<std::array<int, 2>> nu;    ///< boundary pairs {cut vertex of A, cut vertex of B}, counter-clockwise
+};
+
+/// Cuts two closed genus-0 meshes to disks along a common tree through corresponding landmarks.
+/// \param VA, VB #V by 3 positions; FA, FB #F by 3 faces (counter-clockwise)
+/// \param landmarks_a, landmarks_b k >= 2 vertices each; landmark i of A corresponds to landmark i of B
+/// \return refined and cut meshes with provenance; every cut mesh is a disk (one boundary loop, Euler
+///         characteristic 1) and nu is a bijection of the boundary vertices preserving their cyclic order and
+///         taking landmark copies to copies of the same landmark.
+/// \throw InvalidInputError if a mesh is not closed genus 0 and connected, the landmark counts differ, k < 2, a
+///        landmark index is out of range, or two landmarks share a vertex.
+/// \throw PipelineError if an internal invariant fails (a bug).
+CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
+                     const std::vector<VertexId>& landmarks_b, const CutOptions& options = {});
+
+}  // namespace liftmap

@@ -1,0 +1,85 @@
+#include "cut/cut_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+#include "cut_test_util.h"
+
+namespace liftmap {
+namespace {
+
+using test::Pattern;
+
+using test::Case;
+using test::run;
+
+TEST(cut_meshes, TwoLandmarks) { run({"cow", "triceratops"}, 2, Pattern::kRandom, 1); }
+
+TEST(cut_meshes, RandomLandmarksOnSeveralPairs) {
+  const Case cases[] = {{"cow", "triceratops"}, {"hand", "blobby"}, {"bull", "dino"}, {"homer", "camel"}};
+  unsigned seed = 10;
+  for (const Case& c : cases) {
+    for (const int k : {3, 8, 20}) run(c, k, Pattern::kRandom, seed++);
+  }
+}
+
+TEST(cut_meshes, CloseTogetherLandmarks) {
+  unsigned seed = 100;
+  for (const int k : {3, 6, 12, 20}) run({"cow", "hand"}, k, Pattern::kClose, seed++);
+}
+
+TEST(cut_meshes, NearlyCollinearLandmarks) {
+  unsigned seed = 200;
+  for (const int k : {3, 6, 12, 20}) run({"triceratops", "blobby"}, k, Pattern::kCollinear, seed++);
+}
+
+TEST(cut_meshes, MixedPatternsBetweenMeshes) {
+  // Clustered on one mesh, spread on the other: the geodesic trees disagree and need sector repair.
+  const auto ma = test::load("cow"), mb = test::load("bull");
+  for (unsigned seed = 300; seed < 304; ++seed) {
+    std::mt19937 rng(seed);
+    const auto la = test::landmark_set(ma, 15, Pattern::kClose, rng);
+    const auto lb = test::landmark_set(mb, 15, Pattern::kRandom, rng);
+    const CutResult r = cut_meshes(ma.V, ma.F, mb.V, mb.F, la, lb);
+    test::check_cut(r, ma, mb, la, lb);
+  }
+}
+
+TEST(cut_meshes, PathTreeOption) {
+  CutOptions options;
+  options.tree = CutOptions::Tree::kPath;
+  run({"cow", "triceratops"}, 10, Pattern::kRandom, 400, options);
+}
+
+TEST(cut_meshes, WithoutShortening) {
+  CutOptions options;
+  options.geodesic_paths = false;
+  run({"hand", "cow"}, 10, Pattern::kRandom, 500, options);
+}
+
+TEST(cut_meshes, TwoLandmarksOnOneVertexIsAnInputError) {
+  const auto m = test::load("cow");
+  const std::vector<VertexId> la{VertexId(1), VertexId(5), VertexId(1)};
+  const std::vector<VertexId> lb{VertexId(1), VertexId(2), VertexId(3)};
+  try {
+    (void)cut_meshes(m.V, m.F, m.V, m.F, la, lb);
+    FAIL() << "expected InvalidInputError";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("same vertex 1"), std::string::npos) << e.what();
+  }
+}
+
+TEST(cut_meshes, OtherInputErrors) {
+  const auto m = test::load("cow");
+  const std::vector<VertexId> two{VertexId(1), VertexId(2)};
+  const std::vector<VertexId> three{VertexId(1), VertexId(2), VertexId(3)};
+  EXPECT_THROW((void)cut_meshes(m.V, m.F, m.V, m.F, two, three), InvalidInputError);
+  EXPECT_THROW((void)cut_meshes(m.V, m.F, m.V, m.F, {VertexId(1)}, {VertexId(1)}), InvalidInputError);
+  EXPECT_THROW((void)cut_meshes(m.V, m.F, m.V, m.F, two, {VertexId(1), VertexId(1 << 30)}), InvalidInputError);
+  // An open mesh is not a valid input.
+  const Eigen::MatrixXi open = m.F.topRows(m.F.rows() - 1);
+  EXPECT_THROW((void)cut_meshes(m.V, open, m.V, m.F, two, two), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace liftmap
