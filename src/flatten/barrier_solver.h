@@ -1,0 +1,80 @@
+#pragma once
+/// The convex subproblem (10) of Algorithm 2 (paper §3.3), solved by our own barrier method on Eigen + CHOLMOD.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "flatten/distortion.h"
+#include "flatten/jacobian.h"
+#include "flatten/sparse_cholesky.h"
+
+namespace liftmap {
+
+/// One flattening of the pair in problem (10): its faces, Jacobian operator, fixed rotations R_j of eq. (7b),
+/// and where each vertex's position lives in the shared unknowns.
+struct SubproblemMesh {
+  Eigen::MatrixXd V;          ///< #V by 3 rest positions (normalised) that `jacobian` was built from
+  Eigen::MatrixXi F;          ///< #F by 3 vertex indices
+  JacobianOperator jacobian;  ///< jacobian_operator(V, F)
+  Eigen::VectorXd theta;      ///< #F rotation angles of eq. (7b)
+  std::vector<int> slot;      ///< #V: row of the vertex's position in the unknowns X; corresponding boundary
+                              ///< vertices of the two meshes share a row, which realises constraint (10b)
+};
+
+/// Problem (10): minimise E(Phi) + E(Psi) over the shared unknown positions X (#slots by 2), with
+/// E = sqrt(sum_j |t_j| E_j^2) (p = 2) or max_j E_j (p = inf), E_j = h(Sigma_j, 1/sigma_tilde_j) (NOTES.md).
+struct ConvexSubproblem {
+  std::array<SubproblemMesh, 2> meshes;
+  /// Constraint-only faces (no energy): sigma_tilde_j > 0 and Sigma_j <= kGhostStretch * Sigma_j(X0) on each
+  /// (the bound keeps the ghost vertices, which no energy holds, in a bounded region). The paper's ghost
+  /// faces, two per boundary vertex, closing its one-ring through an extra ghost vertex so that its angle sum
+  /// stays below 2 pi.
+  SubproblemMesh ghosts;
+  int n_slots = 0;                                   ///< rows of X
+  double p = 2;                                      ///< 2 or infinity
+  DistortionCombiner h = DistortionCombiner::kNorm;  ///< eq. (3) by default
+};
+
+/// Bound of the ghost faces' largest singular value, relative to its value at the start of the subproblem.
+inline constexpr double kGhostStretch = 10;
+
+/// Settings of the barrier method.
+struct BarrierOptions {
+  /// Stop when the duality-gap bound nu/t is below this times the objective. 1e-8 is reached reliably on a
+  /// few thousand faces; beyond, the Newton systems at t ~ 1e11 approach double-precision limits.
+  double relative_gap = 1e-8;
+  double barrier_growth = 20;      ///< t <- barrier_growth * t after each centring
+  double newton_tolerance = 1e-7;  ///< centring stops when the Newton decrement lambda^2/2 is below this
+  int max_newton_steps = 400;      ///< in total, over all centrings
+};
+
+/// What the barrier method found.
+struct BarrierResult {
+  Eigen::MatrixXd X;     ///< #slots by 2 minimiser; row `fixed_slot` kept at its start position (the
+                         ///< objective is invariant under translation)
+  double objective = 0;  ///< objective (10a) at X, auxiliary variables eliminated
+  double gap_bound = 0;  ///< nu/t at the end: objective minus optimum, up to the centring tolerance
+  int newton_steps = 0;
+  int centrings = 0;
+  bool converged = false;  ///< false if max_newton_steps ran out first
+};
+
+/// Objective (10a) at X with the auxiliary variables eliminated; +infinity if some sigma_tilde_j <= 0.
+double subproblem_objective(const ConvexSubproblem& problem, const Eigen::MatrixXd& X);
+
+/// Solves problem (10) from a strictly feasible start with a log-barrier method: second-order-cone barriers on
+/// |(gamma,delta)| <= c_j and on the epigraph constraints of E_j (auxiliary c_j, e_j per face, and the two
+/// epigraph variables of the max for p = inf), Newton steps in which the per-face auxiliaries are eliminated by
+/// a Schur complement so that each step is ONE sparse SPD solve in the vertex coordinates (plus a rank-2 or
+/// bordered correction for the global coupling of (10a)), and a line search that never leaves the strictly
+/// feasible set: every iterate has sigma_tilde_j > 0, hence det A_j > 0, for all faces.
+/// \param X0 #slots by 2 strictly feasible start
+/// \param cholesky reused factorisation: analysed on first use, then only refactorised (same problem pattern)
+/// \throw InvalidInputError if X0 is not strictly feasible; PipelineError if a Newton step is not finite.
+/// If the Newton systems stop factorising (double-precision limit, seen for p = inf near a 1e-8 gap), the
+/// method stops at its strictly feasible iterate with converged = false and the reached gap_bound.
+BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
+                                      const BarrierOptions& options, SparseCholesky& cholesky);
+
+}  // namespace liftmap

@@ -1,0 +1,256 @@
+#include "flatten/joint_flatten.h"
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/errors.h"
+#include "flatten/boundary_loop.h"
+#include "flatten/flattening_checks.h"
+#include "flatten/jacobian.h"
+#include "flatten/tutte.h"
+
+namespace liftmap {
+
+namespace {
+
+/// Checks that `boundary` is the disk's boundary loop, counter-clockwise, from any start.
+void check_boundary(const FlatteningDisk& d, const char* name) {
+  if (d.mesh == nullptr) throw InvalidInputError(std::string("joint_flatten: disk ") + name + " has no mesh");
+  if (d.V.rows() != d.mesh->n_vertices() || d.V.cols() != 3) {
+    throw InvalidInputError(std::string("joint_flatten: V of disk ") + name + " must be #V by 3");
+  }
+  const std::vector<VertexId> loop = ccw_boundary_loop(*d.mesh);
+  if (loop.size() != d.boundary.size()) {
+    throw InvalidInputError(std::string("joint_flatten: the boundary of disk ") + name + " has " +
+                            std::to_string(loop.size()) + " vertices, " + std::to_string(d.boundary.size()) + " given");
+  }
+  size_t start = 0;
+  while (start < loop.size() && loop[start] != d.boundary[0]) ++start;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    if (start == loop.size() || loop[(start + i) % loop.size()] != d.boundary[i]) {
+      throw InvalidInputError(std::string("joint_flatten: the boundary of disk ") + name +
+                              " is not its boundary loop in counter-clockwise order");
+    }
+  }
+}
+
+double total_area(const Mesh& mesh, const Eigen::MatrixXd& V) {
+  double a = 0;
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto fv = mesh.face_vertices(FaceId(f));
+    const Eigen::Vector3d e1 = V.row(fv[1].idx) - V.row(fv[0].idx);
+    const Eigen::Vector3d e2 = V.row(fv[2].idx) - V.row(fv[0].idx);
+    a += 0.5 * e1.cross(e2).norm();
+  }
+  return a;
+}
+
+/// Cumulative boundary arc length, as a fraction of the loop length, at each boundary vertex.
+Eigen::VectorXd arc_fractions(const Eigen::MatrixXd& V, const std::vector<VertexId>& loop) {
+  const auto nb = static_cast<Eigen::Index>(loop.size());
+  Eigen::VectorXd s = Eigen::VectorXd::Zero(nb);
+  double total = 0;
+  for (Eigen::Index i = 0; i < nb; ++i) {
+    const double l =
+        (V.row(loop[static_cast<size_t>((i + 1) % nb)].idx) - V.row(loop[static_cast<size_t>(i)].idx)).norm();
+    if (i + 1 < nb) s(i + 1) = total + l;
+    total += l;
+  }
+  return s / total;
+}
+
+double energy_of(const SubproblemMesh& mesh, const Eigen::MatrixXd& U, const JointFlattenOptions& options,
+                 double& max_distortion) {
+  const Eigen::MatrixXd P = similarity_parts(mesh.jacobian, mesh.F, U);
+  max_distortion = std::max(max_distortion, true_distortion(P).maxCoeff());
+  return distortion_energy(face_distortion(P, options.h), mesh.jacobian.area, options.p);
+}
+
+}  // namespace
+
+Eigen::MatrixXd mesh_positions(const ConvexSubproblem& problem, int k, const Eigen::MatrixXd& X) {
+  const SubproblemMesh& mesh = problem.meshes[static_cast<size_t>(k)];
+  Eigen::MatrixXd U(static_cast<Eigen::Index>(mesh.slot.size()), 2);
+  for (size_t v = 0; v < mesh.slot.size(); ++v) {
+    U.row(static_cast<Eigen::Index>(v)) =
+        mesh.slot[v] >= 0 ? Eigen::RowVector2d(X.row(mesh.slot[v])) : Eigen::RowVector2d::Zero();
+  }
+  return U;
+}
+
+void set_rotations(ConvexSubproblem& problem, const Eigen::MatrixXd& X) {
+  for (int k = 0; k < 3; ++k) {
+    SubproblemMesh& mesh = k < 2 ? problem.meshes[static_cast<size_t>(k)] : problem.ghosts;
+    if (mesh.F.rows() == 0) continue;
+    Eigen::MatrixXd U(static_cast<Eigen::Index>(mesh.slot.size()), 2);
+    for (size_t v = 0; v < mesh.slot.size(); ++v) {
+      U.row(static_cast<Eigen::Index>(v)) =
+          mesh.slot[v] >= 0 ? Eigen::RowVector2d(X.row(mesh.slot[v])) : Eigen::RowVector2d::Zero();
+    }
+    mesh.theta = polar_rotations(similarity_parts(mesh.jacobian, mesh.F, U));
+  }
+}
+
+JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const FlatteningDisk& n,
+                                               const JointFlattenOptions& options) {
+  check_boundary(m, "M");
+  check_boundary(n, "N");
+  if (m.boundary.size() != n.boundary.size()) {
+    throw InvalidInputError("joint_flatten: the boundaries have " + std::to_string(m.boundary.size()) + " and " +
+                            std::to_string(n.boundary.size()) + " vertices; they must correspond one to one");
+  }
+  if (!(options.p >= 1)) throw InvalidInputError("joint_flatten: p must be 2 or infinity");
+  const int nb = static_cast<int>(m.boundary.size());
+  const std::array<const FlatteningDisk*, 2> disks{&m, &n};
+
+  JointFlattenProblem jp;
+  const double am = total_area(*m.mesh, m.V), an = total_area(*n.mesh, n.V);
+  if (options.normalize_area) {
+    jp.scale_m = std::sqrt(std::numbers::pi / am);
+    jp.scale_n = std::sqrt(std::numbers::pi / an);
+  } else {
+    jp.scale_m = jp.scale_n = std::sqrt(std::numbers::pi / (0.5 * (am + an)));
+  }
+  ConvexSubproblem& sp = jp.subproblem;
+  sp.p = options.p;
+  sp.h = options.h;
+
+  // Slots: boundary (shared, in correspondence order), interior of M, interior of N, ghost vertices.
+  int next = nb;
+  for (int k = 0; k < 2; ++k) {
+    const FlatteningDisk& d = *disks[static_cast<size_t>(k)];
+    SubproblemMesh& sm = sp.meshes[static_cast<size_t>(k)];
+    sm.F = d.mesh->faces();
+    sm.V = d.V * (k == 0 ? jp.scale_m : jp.scale_n);
+    sm.jacobian = jacobian_operator(sm.V, sm.F);
+    sm.slot.assign(static_cast<size_t>(d.mesh->n_vertices()), -1);
+    for (int i = 0; i < nb; ++i) sm.slot[static_cast<size_t>(d.boundary[static_cast<size_t>(i)].idx)] = i;
+    for (int v = 0; v < d.mesh->n_vertices(); ++v) {
+      if (sm.slot[static_cast<size_t>(v)] < 0 && !d.mesh->is_isolated(VertexId(v)))
+        sm.slot[static_cast<size_t>(v)] = next++;
+    }
+    jp.F[static_cast<size_t>(k)] = sm.F;
+  }
+  const int n_mesh_slots = next;
+  sp.n_slots = n_mesh_slots + (options.ghost_faces ? nb : 0);
+
+  // Tutte start: corresponding boundary vertices at the same point of the unit circle.
+  const Eigen::VectorXd s = 0.5 * (arc_fractions(m.V, m.boundary) + arc_fractions(n.V, n.boundary));
+  Eigen::MatrixXd B(nb, 2);
+  for (int i = 0; i < nb; ++i) {
+    const double a = 2 * std::numbers::pi * s(i);
+    B.row(i) << std::cos(a), std::sin(a);
+  }
+  jp.X0 = Eigen::MatrixXd::Zero(sp.n_slots, 2);
+  for (int k = 0; k < 2; ++k) {
+    const FlatteningDisk& d = *disks[static_cast<size_t>(k)];
+    const Eigen::MatrixXd U = tutte_embedding(*d.mesh, d.V, d.boundary, B);
+    const SubproblemMesh& sm = sp.meshes[static_cast<size_t>(k)];
+    for (size_t v = 0; v < sm.slot.size(); ++v) {
+      if (sm.slot[v] >= 0) jp.X0.row(sm.slot[v]) = U.row(static_cast<Eigen::Index>(v));
+    }
+  }
+
+  // Ghost faces (v, a, g), (v, g, b) for boundary vertex v with neighbours a (before) and b (after): they
+  // close v's one-ring through the ghost vertex g, placed on the outer bisector; rest shape = their start shape.
+  if (options.ghost_faces) {
+    SubproblemMesh& g = sp.ghosts;
+    g.F.resize(2 * nb, 3);
+    g.slot.resize(static_cast<size_t>(sp.n_slots));
+    for (int i = 0; i < sp.n_slots; ++i) g.slot[static_cast<size_t>(i)] = i;
+    for (int i = 0; i < nb; ++i) {
+      const int a = (i + nb - 1) % nb, b = (i + 1) % nb, gv = n_mesh_slots + i;
+      const Eigen::RowVector2d pv = jp.X0.row(i);
+      const Eigen::RowVector2d da = jp.X0.row(a) - pv, db = jp.X0.row(b) - pv;
+      const Eigen::RowVector2d out = -(da.normalized() + db.normalized()).normalized();
+      jp.X0.row(gv) = pv + 0.5 * (da.norm() + db.norm()) * 0.5 * out;
+      g.F.row(2 * i) << i, a, gv;
+      g.F.row(2 * i + 1) << i, gv, b;
+    }
+    g.V = Eigen::MatrixXd::Zero(sp.n_slots, 3);
+    g.V.leftCols(2) = jp.X0;
+    g.jacobian = jacobian_operator(g.V, g.F);
+  }
+  set_rotations(sp, jp.X0);
+  return jp;
+}
+
+JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& n, const JointFlattenOptions& options) {
+  JointFlattenProblem jp = make_joint_flatten_problem(m, n, options);
+  ConvexSubproblem& sp = jp.subproblem;
+  JointFlattenResult res;
+  res.scale_m = jp.scale_m;
+  res.scale_n = jp.scale_n;
+
+  auto record = [&](const Eigen::MatrixXd& X, JointFlattenIteration& it) {
+    const std::array<const Mesh*, 2> meshes{m.mesh, n.mesh};
+    double e[2];
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::MatrixXd U = mesh_positions(sp, k, X);
+      if ((signed_double_areas(jp.F[static_cast<size_t>(k)], U).array() <= 0).any()) {
+        throw PipelineError("joint_flatten: a face is flipped or degenerate in outer iteration " +
+                            std::to_string(res.iterations.size()));
+      }
+      const Eigen::VectorXd sums = angle_sums(*meshes[static_cast<size_t>(k)], U);
+      for (int v = 0; v < meshes[static_cast<size_t>(k)]->n_vertices(); ++v) {
+        const VertexId vid(v);
+        if (meshes[static_cast<size_t>(k)]->is_isolated(vid)) continue;
+        const bool bad = meshes[static_cast<size_t>(k)]->is_boundary(vid)
+                             ? !(sums(v) < 2 * std::numbers::pi)
+                             : std::abs(sums(v) - 2 * std::numbers::pi) > 1e-6;
+        if (bad) {
+          throw PipelineError("joint_flatten: vertex " + std::to_string(v) + " of disk " + (k == 0 ? "M" : "N") +
+                              " is not locally injective (angle sum " + std::to_string(sums(v)) + ")");
+        }
+      }
+      e[k] = energy_of(sp.meshes[static_cast<size_t>(k)], U, options, it.max_distortion);
+      if (options.keep_iterates) (k == 0 ? res.Phi_iterates : res.Psi_iterates).push_back(U / jp.scale_m);
+    }
+    it.energy_m = e[0];
+    it.energy_n = e[1];
+    it.energy = e[0] + e[1];
+  };
+
+  Eigen::MatrixXd X = jp.X0;
+  {
+    JointFlattenIteration it;
+    record(X, it);
+    res.iterations.push_back(it);
+  }
+  SparseCholesky cholesky;
+  for (int iter = 0; iter < options.max_iterations; ++iter) {
+    const auto t0 = std::chrono::steady_clock::now();
+    set_rotations(sp, X);
+    const BarrierResult br = solve_convex_subproblem(sp, X, options.solver, cholesky);
+    // The start X is feasible with objective E(X) (the rotations are its polar ones): a result above that
+    // (only possible if the solver stopped early, far from the central path's end) would break monotonicity.
+    // Every iterate is strictly feasible, so the previous one is a valid (liftable) result: stop there rather
+    // than fail the whole map.
+    if (!br.converged && br.objective > subproblem_objective(sp, X)) {
+      res.stop_reason = "the convex subproblem of outer iteration " + std::to_string(iter + 1) +
+                        " did not converge in " + std::to_string(options.solver.max_newton_steps) +
+                        " Newton steps; kept the flattenings of iteration " + std::to_string(iter);
+      break;
+    }
+    JointFlattenIteration it;
+    it.subproblem_objective = br.objective;
+    it.newton_steps = br.newton_steps;
+    record(br.X, it);
+    it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double previous = res.iterations.back().energy;
+    res.iterations.push_back(it);
+    X = br.X;
+    if (previous - it.energy < options.relative_tolerance * previous) {
+      res.converged = true;
+      break;
+    }
+  }
+  res.Phi = mesh_positions(sp, 0, X) / jp.scale_m;
+  res.Psi = mesh_positions(sp, 1, X) / jp.scale_m;
+  return res;
+}
+
+}  // namespace liftmap

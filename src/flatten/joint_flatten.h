@@ -1,0 +1,87 @@
+#pragma once
+/// Joint flattening of two disks with a common boundary: Algorithm 2 of the paper (§3.3).
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "flatten/barrier_solver.h"
+#include "flatten/distortion.h"
+
+namespace liftmap {
+
+/// One of the two cut disks and its boundary in correspondence order.
+struct FlatteningDisk {
+  const Mesh* mesh = nullptr;      ///< a disk (one boundary loop, Euler characteristic 1)
+  Eigen::MatrixXd V;               ///< #V by 3 vertex positions
+  std::vector<VertexId> boundary;  ///< the whole boundary loop, counter-clockwise (interior on the left);
+                                   ///< boundary[i] of one disk corresponds to boundary[i] of the other (nu)
+};
+
+/// Settings of Algorithm 2; defaults are the paper's.
+struct JointFlattenOptions {
+  double p = 2;                                      ///< 2 or std::numeric_limits<double>::infinity()
+  DistortionCombiner h = DistortionCombiner::kNorm;  ///< eq. (3) by default, eq. (2) as alternative
+  bool normalize_area = true;                        ///< scale both disks to the same total area (pi) before flattening
+  bool ghost_faces = true;                           ///< the paper's ghost faces: boundary angle sums stay below 2 pi
+  double relative_tolerance = 1e-3;  ///< stop when the energy (8) improves by less than this, relatively
+  int max_iterations = 10;           ///< outer iterations
+  bool keep_iterates = false;        ///< keep every iterate's flattenings in the result
+  /// The convex subproblem solver. A relative gap of 1e-6 is ample for an outer tolerance of 1e-3, and stays
+  /// clear of the double-precision limits of the barrier method on large meshes (see BarrierOptions).
+  BarrierOptions solver{.relative_gap = 1e-6};
+};
+
+/// Statistics of one iterate (index 0: the Tutte start).
+struct JointFlattenIteration {
+  double energy = 0;  ///< E_p(Phi) + E_p(Psi), eq. (8) with the chosen h, p (normalised meshes)
+  double energy_m = 0, energy_n = 0;
+  double max_distortion = 0;        ///< max over both meshes of max(Sigma, 1/sigma) (§4.2)
+  double subproblem_objective = 0;  ///< optimum of (10) found in this iteration (0 for the start)
+  int newton_steps = 0;
+  double seconds = 0;  ///< wall time of this outer iteration (rotations + solve + checks)
+};
+
+/// Result of the joint flattening.
+struct JointFlattenResult {
+  Eigen::MatrixXd Phi;  ///< #V(M) by 2 flattening of the first disk
+  Eigen::MatrixXd Psi;  ///< #V(N) by 2 flattening of the second; Phi(boundary_m[i]) == Psi(boundary_n[i])
+  std::vector<JointFlattenIteration> iterations;            ///< start, then one entry per outer iteration
+  std::vector<Eigen::MatrixXd> Phi_iterates, Psi_iterates;  ///< every iterate if keep_iterates, else empty
+  std::string stop_reason;          ///< why the outer loop stopped before converging, if it did (empty otherwise)
+  bool converged = false;           ///< the relative tolerance was met before max_iterations
+  double scale_m = 1, scale_n = 1;  ///< factors applied to the disks' coordinates internally
+};
+
+/// Computes liftable flattenings Phi, Psi of two disks with a common boundary (Algorithm 2): mean-value Tutte
+/// start on the unit circle (corresponding boundary vertices at the same point, spaced by the averaged
+/// boundary arc length), then convex subproblems (10) with rotations from the polar decompositions.
+/// Every iterate has all faces positively oriented, interior angle sums 2 pi, and (with ghost faces) boundary
+/// angle sums below 2 pi; Phi and Psi agree exactly on corresponding boundary vertices. Outputs are in the first
+/// disk's input units (positions divided by scale_m), so that the common boundary stays common.
+/// \throw InvalidInputError if a mesh is not a disk, the boundaries differ in length or are not the boundary
+///        loops in counter-clockwise order; PipelineError if the solver or a liftability check fails.
+JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& n,
+                                 const JointFlattenOptions& options = {});
+
+/// The building blocks of joint_flatten(), exposed for tests and the subproblem exporter: the (normalised)
+/// problem of one outer iteration at the given shared positions X, with rotations taken from X.
+struct JointFlattenProblem {
+  ConvexSubproblem subproblem;  ///< rotations filled by set_rotations()
+  Eigen::MatrixXd X0;           ///< #slots by 2 Tutte start (boundary slots first, in boundary order)
+  std::array<Eigen::MatrixXi, 2> F;
+  double scale_m = 1, scale_n = 1;
+};
+
+/// Normalises, validates, builds the slots and ghost faces, and computes the Tutte start.
+JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const FlatteningDisk& n,
+                                               const JointFlattenOptions& options);
+
+/// Sets every face's rotation (both meshes and ghosts) to the polar rotation of its Jacobian at X.
+void set_rotations(ConvexSubproblem& problem, const Eigen::MatrixXd& X);
+
+/// The flattening of mesh k (0 or 1) of the problem at X, #V by 2.
+Eigen::MatrixXd mesh_positions(const ConvexSubproblem& problem, int k, const Eigen::MatrixXd& X);
+
+}  // namespace liftmap

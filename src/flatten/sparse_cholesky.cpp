@@ -1,0 +1,43 @@
+#include "flatten/sparse_cholesky.h"
+
+#include <Eigen/CholmodSupport>
+
+#include "core/errors.h"
+
+namespace liftmap {
+
+// Supernodal LL^T: the fastest CHOLMOD mode for the 2D-mesh Laplacian-like systems of the flattening stage.
+struct SparseCholesky::Impl {
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  bool analyzed = false;
+};
+
+SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
+  // Failures are reported through factorize()'s return value; CHOLMOD's own warnings would only flood stdout.
+  impl_->llt.cholmod().print = 0;
+}
+SparseCholesky::~SparseCholesky() = default;
+SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
+SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
+
+void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
+  impl_->llt.analyzePattern(A);
+  if (impl_->llt.info() != Eigen::Success) throw PipelineError("sparse Cholesky: symbolic analysis failed");
+  impl_->analyzed = true;
+}
+
+bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
+  if (!impl_->analyzed) analyze(A);
+  impl_->llt.factorize(A);
+  return impl_->llt.info() == Eigen::Success;
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+  Eigen::MatrixXd X = impl_->llt.solve(B);
+  if (impl_->llt.info() != Eigen::Success) throw PipelineError("sparse Cholesky: solve failed");
+  return X;
+}
+
+bool SparseCholesky::analyzed() const { return impl_->analyzed; }
+
+}  // namespace liftmap

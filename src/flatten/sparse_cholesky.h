@@ -1,0 +1,38 @@
+#pragma once
+/// The one sparse symmetric positive definite solver of liftmap: CHOLMOD, with the symbolic analysis done once
+/// per sparsity pattern and a numeric refactorisation per matrix (every Newton step, every outer iteration).
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+
+namespace liftmap {
+
+/// Cholesky factorisation of a sparse SPD matrix that keeps its symbolic analysis across refactorisations.
+/// Only the lower triangle of the matrix is read. Usage: `analyze(A)` once, then `factorize(A)` whenever the
+/// values change (same pattern), then `solve(b)` any number of times.
+class SparseCholesky {
+ public:
+  SparseCholesky();
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+  SparseCholesky(SparseCholesky&&) noexcept;
+  SparseCholesky& operator=(SparseCholesky&&) noexcept;
+
+  /// Fill-reducing ordering and symbolic factorisation of the pattern of `A` (n by n, lower triangle used).
+  /// \throw PipelineError if CHOLMOD fails.
+  void analyze(const Eigen::SparseMatrix<double>& A);
+  /// Numeric factorisation of `A`, which must have the pattern given to `analyze`.
+  /// \return false if `A` is not (numerically) positive definite; the caller decides what to do.
+  [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
+  /// Solves `A X = B` for the last factorised `A`; `B` is n by k.
+  [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  [[nodiscard]] bool analyzed() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace liftmap

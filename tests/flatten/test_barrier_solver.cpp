@@ -1,0 +1,69 @@
+#include "flatten/barrier_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "disk_patches.h"
+#include "flatten/flattening_checks.h"
+#include "flatten/joint_flatten.h"
+
+namespace liftmap {
+namespace {
+
+struct Combo {
+  double p;
+  DistortionCombiner h;
+  const char* name;
+};
+
+class flatten_barrier : public ::testing::TestWithParam<Combo> {};
+
+TEST_P(flatten_barrier, SolvesFirstSubproblemToOptimality) {
+  const Combo combo = GetParam();
+  const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 300, 0, 500);
+  JointFlattenOptions opt;
+  opt.p = combo.p;
+  opt.h = combo.h;
+  const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+  SparseCholesky chol;
+  const BarrierResult r = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol);
+  const double f0 = subproblem_objective(jp.subproblem, jp.X0);
+  // p = inf: the Newton systems reach double-precision limits before a 1e-8 gap (see BarrierOptions).
+  const double gap = std::isinf(combo.p) ? 1e-5 : 1e-8;
+  if (!std::isinf(combo.p)) EXPECT_TRUE(r.converged);
+  std::printf("%s: start %.10g optimum %.10g, %d Newton steps, %d centrings\n", combo.name, f0, r.objective,
+              r.newton_steps, r.centrings);
+  EXPECT_LT(r.objective, f0);
+  EXPECT_LE(r.gap_bound, gap * r.objective);
+  EXPECT_EQ(r.X.row(0), jp.X0.row(0)) << "the gauge vertex moved";
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_GT(signed_double_areas(jp.F[k], mesh_positions(jp.subproblem, k, r.X)).minCoeff(), 0);
+  }
+  // Optimality: no random feasible perturbation nor step toward the start improves on the result.
+  std::mt19937 rng(1);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::MatrixXd D = Eigen::MatrixXd::NullaryExpr(r.X.rows(), 2, [&] { return normal(rng); });
+    D.row(0).setZero();
+    for (const double eps : {1e-3, 1e-5}) {
+      const double fp = subproblem_objective(jp.subproblem, r.X + eps * D);
+      EXPECT_GE(fp, r.objective * (1 - gap));
+    }
+  }
+  for (const double s : {1e-2, 1e-4}) {
+    EXPECT_GE(subproblem_objective(jp.subproblem, r.X + s * (jp.X0 - r.X)), r.objective * (1 - gap));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllCombos, flatten_barrier,
+    ::testing::Values(Combo{2, DistortionCombiner::kNorm, "p2_norm"}, Combo{2, DistortionCombiner::kMax, "p2_max"},
+                      Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kNorm, "pinf_norm"},
+                      Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kMax, "pinf_max"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace liftmap
