@@ -40,7 +40,8 @@ demo: meshes build
 	./scripts/demo.sh $(LIFTMAP)
 
 bench: meshes build
-	./bench/run.sh $(BUILD)
+	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
+	./bench/run.py $(BUILD)
 
 # Formatting and static analysis, as checked by CI.
 lint: build

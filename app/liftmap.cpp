@@ -1,18 +1,31 @@
 // liftmap: command line front end. Each subcommand is a thin wrapper over the library; every failure becomes
 // one message on stderr and a documented exit code (README, "Exit codes").
 
+#include <omp.h>
+
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <limits>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
+#include "cut/write_cut.h"
 #include "io/landmarks.h"
 #include "io/read_mesh.h"
+#include "io/write_mesh.h"
+#include "map/map_meshes.h"
+#include "map/transfer.h"
+#include "map/write_figures.h"
+#include "map/write_map.h"
 
 namespace {
 
@@ -78,6 +91,172 @@ int run_check(const std::vector<std::string>& paths, const std::string& landmark
   return ok ? liftmap::kExitOk : liftmap::kExitInvalidInput;
 }
 
+/// Inputs and options shared by `map` and `cut`.
+struct PairJob {
+  std::string path_a, path_b, landmarks_path, out_dir = "out";
+  std::string p = "2", h = "eq3", tree = "mst";
+  bool no_normalize = false, quiet = false;
+  double tolerance = 1e-3;
+  int max_iterations = 10, threads = 0, samples = 2;
+};
+
+void add_pair_options(CLI::App* cmd, PairJob& job) {
+  cmd->add_option("A", job.path_a, "Mesh A (.off, .obj, .ply, .stl)")->required();
+  cmd->add_option("B", job.path_b, "Mesh B")->required();
+  cmd->add_option("-l,--landmarks", job.landmarks_path, "Landmark file: 'iA iB' per line")->required();
+  cmd->add_option("-o,--out", job.out_dir, "Output folder (created if missing)")->capture_default_str();
+  cmd->add_option("--tree", job.tree, "Cut tree: mst (paper) or path (through all landmarks)")
+      ->check(CLI::IsMember({"mst", "path"}))
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
+  cmd->add_option("--threads", job.threads, "Threads for the per-face work (0: all cores)")->capture_default_str();
+}
+
+struct Inputs {
+  liftmap::TriangleMesh a, b;
+  liftmap::Landmarks landmarks;
+};
+
+Inputs read_inputs(const PairJob& job) {
+  Inputs in;
+  in.a = liftmap::read_mesh(job.path_a);
+  in.b = liftmap::read_mesh(job.path_b);
+  liftmap::require_mappable(liftmap::check_mesh(in.a.V, in.a.F), job.path_a);
+  liftmap::require_mappable(liftmap::check_mesh(in.b.V, in.b.F), job.path_b);
+  in.landmarks =
+      liftmap::read_landmarks(job.landmarks_path, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
+  std::error_code ec;
+  std::filesystem::create_directories(job.out_dir, ec);
+  if (ec) throw liftmap::IoError(job.out_dir + ": cannot create output folder: " + ec.message());
+  return in;
+}
+
+liftmap::MapOptions map_options(const PairJob& job) {
+  liftmap::MapOptions o;
+  o.cut.tree = job.tree == "path" ? liftmap::CutOptions::Tree::kPath : liftmap::CutOptions::Tree::kMinimumSpanning;
+  o.flatten.p = job.p == "inf" ? std::numeric_limits<double>::infinity() : 2.0;
+  o.flatten.h = job.h == "eq2" ? liftmap::DistortionCombiner::kMax : liftmap::DistortionCombiner::kNorm;
+  o.flatten.normalize_area = !job.no_normalize;
+  o.flatten.relative_tolerance = job.tolerance;
+  o.flatten.max_iterations = job.max_iterations;
+  o.distortion_samples_per_edge = job.samples;
+  if (!job.quiet) {
+    const auto t0 = std::chrono::steady_clock::now();
+    o.progress = [t0](const std::string& stage, const std::string& message) {
+      const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::fprintf(stderr, "[%7.2f s] %-8s %s\n", t, stage.c_str(), message.c_str());
+    };
+  }
+  return o;
+}
+
+std::string out_path(const PairJob& job, const std::string& name) {
+  return (std::filesystem::path(job.out_dir) / name).string();
+}
+
+int run_map(const PairJob& job) {
+  const Inputs in = read_inputs(job);
+  const liftmap::MapOptions options = map_options(job);
+  const liftmap::MapResult map =
+      liftmap::map_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options);
+  liftmap::write_vertex_map(out_path(job, "A_to_B.txt"), map.a_to_b,
+                            "liftmap map of A = " + job.path_a + " onto B = " + job.path_b);
+  liftmap::write_vertex_map(out_path(job, "B_to_A.txt"), map.b_to_a,
+                            "liftmap map of B = " + job.path_b + " onto A = " + job.path_a);
+  liftmap::write_barycentric_matrix(out_path(job, "A_to_B.ijv"), map.a_to_b, in.b.F);
+  liftmap::write_barycentric_matrix(out_path(job, "B_to_A.ijv"), map.b_to_a, in.a.F);
+  liftmap::write_cut(job.out_dir, map.cut, map.flattening.Phi, map.flattening.Psi);
+  liftmap::write_vertex_map(out_path(job, "cut_A_to_B.txt"), map.cut_a_to_b,
+                            "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
+  liftmap::write_vertex_map(out_path(job, "cut_B_to_A.txt"), map.cut_b_to_a,
+                            "per vt of cut_B.obj: face of cut_A.obj and barycentric coordinates");
+  const nlohmann::json report = liftmap::map_report(map, job.path_a, in.a, job.path_b, in.b, in.landmarks, options);
+  {
+    std::ofstream out(out_path(job, "report.json"));
+    out << report.dump(2) << '\n';
+    if (!out) throw liftmap::IoError(out_path(job, "report.json") + ": write error");
+  }
+  if (options.progress) options.progress("render", "render.png, distortion.png, textured meshes");
+  liftmap::write_map_render(out_path(job, "render.png"), map, in.a, in.b, in.landmarks.a, in.landmarks.b,
+                            "A: " + std::filesystem::path(job.path_a).filename().string(),
+                            "B: " + std::filesystem::path(job.path_b).filename().string());
+  liftmap::write_distortion_histogram(out_path(job, "distortion.png"), map);
+  liftmap::write_textured_meshes(job.out_dir, map);
+  if (!map.verification.passed) {
+    std::cerr << "liftmap: verification failed (outputs kept in " << job.out_dir
+              << ", see report.json): " << map.verification.failures.front() << '\n';
+    return liftmap::kExitPipeline;
+  }
+  if (!job.quiet) {
+    std::fprintf(stderr, "liftmap: map written to %s (total %.2f s; distortion of f: mean %.3f, max %.3f)\n",
+                 job.out_dir.c_str(), map.seconds.total, map.distortion_f.mean, map.distortion_f.max);
+  }
+  return liftmap::kExitOk;
+}
+
+int run_cut(const PairJob& job) {
+  const Inputs in = read_inputs(job);
+  liftmap::MapOptions options = map_options(job);
+  if (options.progress) options.progress("cut", "cutting both meshes to disks");
+  const liftmap::CutResult cut =
+      liftmap::cut_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options.cut);
+  // The texture coordinates are the common Tutte start of the flattening: the cut as the optimiser sees it.
+  const liftmap::Mesh disk_a(cut.a.F_cut, static_cast<int>(cut.a.cut_to_refined.size()));
+  const liftmap::Mesh disk_b(cut.b.F_cut, static_cast<int>(cut.b.cut_to_refined.size()));
+  liftmap::FlatteningDisk m{&disk_a, cut.a.V(cut.a.cut_to_refined, Eigen::all), {}};
+  liftmap::FlatteningDisk n{&disk_b, cut.b.V(cut.b.cut_to_refined, Eigen::all), {}};
+  for (const auto& pair : cut.nu) {
+    m.boundary.emplace_back(pair[0]);
+    n.boundary.emplace_back(pair[1]);
+  }
+  options.flatten.max_iterations = 0;
+  const liftmap::JointFlattenResult tutte = liftmap::joint_flatten(m, n, options.flatten);
+  liftmap::write_cut(job.out_dir, cut, tutte.Phi, tutte.Psi);
+  if (!job.quiet) {
+    std::fprintf(stderr, "liftmap: cut written to %s: %zu tree edges, %zu boundary vertices per disk\n",
+                 job.out_dir.c_str(), cut.tree.size(), cut.nu.size());
+  }
+  return liftmap::kExitOk;
+}
+
+struct TransferJob {
+  std::string map_path, onto_path, data_path, connectivity_path, out_path;
+};
+
+int run_transfer_attributes(const TransferJob& job) {
+  const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
+  const auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
+  const Eigen::MatrixXd data = liftmap::read_attributes(job.data_path);
+  if (data.rows() != onto.V.rows()) {
+    throw liftmap::InvalidInputError(job.data_path + ": " + std::to_string(data.rows()) + " rows, but " +
+                                     job.onto_path + " has " + std::to_string(onto.V.rows()) + " vertices");
+  }
+  liftmap::write_attributes(job.out_path, liftmap::interpolate_at(onto.F, data, points));
+  return liftmap::kExitOk;
+}
+
+int run_transfer_mesh(const TransferJob& job) {
+  const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
+  const liftmap::TriangleMesh source = liftmap::read_mesh(job.connectivity_path);
+  const auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
+  if (points.size() != static_cast<size_t>(source.V.rows())) {
+    throw liftmap::InvalidInputError(job.map_path + ": " + std::to_string(points.size()) + " lines, but " +
+                                     job.connectivity_path + " has " + std::to_string(source.V.rows()) + " vertices");
+  }
+  liftmap::write_mesh(job.out_path, liftmap::interpolate_at(onto.F, onto.V, points), source.F);
+  return liftmap::kExitOk;
+}
+
+int run_eval(const std::string& map_path, const std::string& truth_path, const std::string& target_path) {
+  const liftmap::TriangleMesh target = liftmap::read_mesh(target_path);
+  const auto n_faces = static_cast<int>(target.F.rows());
+  const liftmap::MapDifference d = liftmap::compare_maps(
+      target.V, target.F, liftmap::read_vertex_map(map_path, n_faces), liftmap::read_vertex_map(truth_path, n_faces));
+  std::printf("mean error: %.6g\nmax error:  %.6g (source vertex %d)\n(Euclidean distance on %s / sqrt(area))\n",
+              d.mean, d.max, d.worst_vertex, target_path.c_str());
+  return liftmap::kExitOk;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
       "liftmap: continuous, bijective, low-distortion maps between two genus-0 triangle meshes\n"
@@ -96,6 +275,56 @@ int run(int argc, char** argv) {
   check->add_option("-l,--landmarks", check_landmarks, "Landmark file to validate against the two meshes");
   check->add_flag("--json", check_json, "Print the report as JSON");
 
+  PairJob map_job;
+  CLI::App* map = app.add_subcommand("map", "Compute the bijective map between A and B and write it to a folder");
+  add_pair_options(map, map_job);
+  map->add_option("--p", map_job.p, "Norm of the energy (10a): 2 or inf")
+      ->check(CLI::IsMember({"2", "inf"}))
+      ->capture_default_str();
+  map->add_option("--h", map_job.h, "Per-face distortion: eq3 = sqrt(Sigma^2 + sigma^-2), eq2 = max")
+      ->check(CLI::IsMember({"eq2", "eq3"}))
+      ->capture_default_str();
+  map->add_flag("--no-normalize", map_job.no_normalize, "Do not scale both meshes to the same area");
+  map->add_option("--tolerance", map_job.tolerance, "Stop when the energy improves by less than this (relative)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  map->add_option("--max-iterations", map_job.max_iterations, "Outer iterations of the flattening")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  map->add_option("--samples", map_job.samples, "Distortion of f, g: n^2 samples per face")
+      ->check(CLI::Range(1, 10))
+      ->capture_default_str();
+
+  PairJob cut_job;
+  CLI::App* cut = app.add_subcommand("cut", "Cut A and B to disks along a common tree (inspect a cut before mapping)");
+  add_pair_options(cut, cut_job);
+
+  TransferJob transfer_job;
+  CLI::App* transfer = app.add_subcommand("transfer", "Carry data from one mesh to the other through a map file");
+  transfer->require_subcommand(1);
+  CLI::App* transfer_attributes = transfer->add_subcommand(
+      "attributes",
+      "Per-vertex attributes of mesh ONTO, interpolated at every point of MAP (e.g. B_to_A.txt with "
+      "--onto A gives A's attributes on B's vertices)");
+  CLI::App* transfer_mesh = transfer->add_subcommand(
+      "mesh",
+      "Mesh transfer: the connectivity of the map's source placed on ONTO (e.g. A_to_B.txt with --onto B "
+      "and --connectivity A)");
+  for (CLI::App* cmd : {transfer_attributes, transfer_mesh}) {
+    cmd->add_option("map", transfer_job.map_path, "Map file: 'face b0 b1 b2' per line, faces of ONTO")->required();
+    cmd->add_option("--onto", transfer_job.onto_path, "The mesh the map's points lie on")->required();
+    cmd->add_option("-o,--out", transfer_job.out_path, "Output file")->required();
+  }
+  transfer_attributes->add_option("--data", transfer_job.data_path, "One row of numbers per vertex of ONTO")
+      ->required();
+  transfer_mesh->add_option("--connectivity", transfer_job.connectivity_path, "The map's source mesh")->required();
+
+  std::string eval_map, eval_truth, eval_target;
+  CLI::App* eval = app.add_subcommand("eval", "Compare a map file with a ground-truth map file into the same mesh");
+  eval->add_option("map", eval_map, "Map file")->required();
+  eval->add_option("truth", eval_truth, "Ground-truth map file, same format")->required();
+  eval->add_option("--target", eval_target, "The mesh both maps point into")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -109,6 +338,14 @@ int run(int argc, char** argv) {
       return liftmap::kExitUsage;
     }
     return run_check(check_paths, check_landmarks, check_json);
+  }
+  if (*transfer_attributes) return run_transfer_attributes(transfer_job);
+  if (*transfer_mesh) return run_transfer_mesh(transfer_job);
+  if (*eval) return run_eval(eval_map, eval_truth, eval_target);
+  for (auto [cmd, job] : {std::pair{map, &map_job}, std::pair{cut, &cut_job}}) {
+    if (!*cmd) continue;
+    if (job->threads > 0) omp_set_num_threads(job->threads);
+    return cmd == map ? run_map(*job) : run_cut(*job);
   }
   return liftmap::kExitUsage;
 }

@@ -1,8 +1,15 @@
 #!/usr/bin/env bash
-# The bundled example: checks an example pair of libcgal-demo meshes and their landmarks.
+# The bundled example: maps larger_sphere.off onto ellipsoid.off (libcgal-demo), examples/sphere-ellipsoid.
 set -euo pipefail
 liftmap="$1"
 root="$(cd "$(dirname "$0")/.." && pwd)"
-example="$root/examples/camel-cow"
-"$liftmap" check "$root/data/meshes/camel.off" "$root/data/meshes/cow.off" -l "$example/landmarks.txt"
-echo "demo: camel.off and cow.off are mappable and the landmarks of $example are valid"
+example="$root/examples/sphere-ellipsoid"
+read -r mesh_a mesh_b <"$example/meshes.txt"
+out="$root/out/sphere-ellipsoid"
+"$liftmap" map "$root/data/meshes/$mesh_a" "$root/data/meshes/$mesh_b" -l "$example/landmarks.txt" -o "$out"
+echo
+echo "demo: the map and its report are in $out"
+ls "$out"
+for picture in render.png distortion.png; do
+  if [ -f "$out/$picture" ]; then echo "picture: $out/$picture"; fi
+done

@@ -29,7 +29,8 @@ namespace {
 std::vector<double> arc_lengths(const RefinedMesh& r, const std::vector<int>& path) {
   std::vector<double> s{0.0};
   for (size_t i = 0; i + 1 < path.size(); ++i) {
-    s.push_back(s.back() + (r.positions[static_cast<size_t>(path[i + 1])] - r.positions[static_cast<size_t>(path[i])]).norm());
+    s.push_back(s.back() +
+                (r.positions[static_cast<size_t>(path[i + 1])] - r.positions[static_cast<size_t>(path[i])]).norm());
   }
   return s;
 }
@@ -138,8 +139,8 @@ std::uint64_t edge_key(int u, int w) {
 
 /// A boundary loop split into sides between consecutive landmark copies.
 struct Loop {
-  std::vector<int> vertices;       ///< cut vertices, counter-clockwise
-  std::vector<size_t> side_start;  ///< positions of landmark copies in `vertices`
+  std::vector<int> vertices;                   ///< cut vertices, counter-clockwise
+  std::vector<size_t> side_start;              ///< positions of landmark copies in `vertices`
   std::vector<std::array<int, 2>> side_label;  ///< per side: {tree edge, landmark at its start}
 };
 
@@ -167,7 +168,8 @@ Loop make_loop(const CutBoundaryInput& in, const char* name) {
     const auto it = landmark_of.find(refined(i));
     if (it == landmark_of.end()) continue;
     const auto te = tree_edge.find(edge_key(refined(i), refined(i + 1)));
-    if (te == tree_edge.end()) throw PipelineError(std::string("cut: boundary edge of mesh ") + name + " is on no cut path");
+    if (te == tree_edge.end())
+      throw PipelineError(std::string("cut: boundary edge of mesh ") + name + " is on no cut path");
     loop.side_start.push_back(i);
     loop.side_label.push_back({te->second, it->second});
   }
@@ -179,7 +181,8 @@ Loop make_loop(const CutBoundaryInput& in, const char* name) {
 std::vector<std::array<int, 2>> match_boundaries(const CutBoundaryInput& a, const CutBoundaryInput& b) {
   const Loop la = make_loop(a, "A");
   const Loop lb = make_loop(b, "B");
-  if (la.vertices.size() != lb.vertices.size() || la.side_start.size() != lb.side_start.size() || la.side_start.empty()) {
+  if (la.vertices.size() != lb.vertices.size() || la.side_start.size() != lb.side_start.size() ||
+      la.side_start.empty()) {
     throw PipelineError("cut: the two boundaries have different vertex or side counts (" +
                         std::to_string(la.vertices.size()) + " and " + std::to_string(lb.vertices.size()) + ")");
   }

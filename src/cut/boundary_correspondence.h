@@ -34,9 +34,9 @@ void equalize_paths(RefinedMesh& a, const Mesh& input_a, std::vector<std::vector
 
 /// One cut disk as `match_boundaries` needs it.
 struct CutBoundaryInput {
-  const Mesh* cut = nullptr;                        ///< the cut mesh (a disk)
-  const Eigen::VectorXi* to_refined = nullptr;      ///< #Vc: cut vertex -> refined vertex
-  const std::vector<int>* landmarks = nullptr;      ///< k refined vertex ids of the landmarks
+  const Mesh* cut = nullptr;                             ///< the cut mesh (a disk)
+  const Eigen::VectorXi* to_refined = nullptr;           ///< #Vc: cut vertex -> refined vertex
+  const std::vector<int>* landmarks = nullptr;           ///< k refined vertex ids of the landmarks
   const std::vector<std::vector<int>>* paths = nullptr;  ///< per tree edge, refined vertex ids of its path
 };
 

@@ -20,7 +20,8 @@ namespace {
 
 void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& landmarks, const char* name) {
   if (!mesh.boundary_loops().empty() || mesh.euler_characteristic() != 2) {
-    throw InvalidInputError(std::string("cut: mesh ") + name + " is not a closed genus-0 surface (Euler characteristic " +
+    throw InvalidInputError(std::string("cut: mesh ") + name +
+                            " is not a closed genus-0 surface (Euler characteristic " +
                             std::to_string(mesh.euler_characteristic()) + ", " +
                             std::to_string(mesh.boundary_loops().size()) + " boundary loops)");
   }
@@ -28,14 +29,14 @@ void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<V
   for (size_t i = 0; i < landmarks.size(); ++i) {
     const int v = landmarks[i].idx;
     if (v < 0 || v >= mesh.n_vertices() || mesh.is_isolated(landmarks[i])) {
-      throw InvalidInputError(std::string("cut: landmark ") + std::to_string(i) + " of mesh " + name +
-                              " is vertex " + std::to_string(v) + ", which is not a vertex of a face");
+      throw InvalidInputError(std::string("cut: landmark ") + std::to_string(i) + " of mesh " + name + " is vertex " +
+                              std::to_string(v) + ", which is not a vertex of a face");
     }
     const auto [it, fresh] = seen.emplace(v, i);
     if (!fresh) {
       throw InvalidInputError(std::string("cut: landmarks ") + std::to_string(it->second) + " and " +
-                              std::to_string(i) + " of mesh " + name + " are on the same vertex " +
-                              std::to_string(v) + " (each landmark needs its own vertex)");
+                              std::to_string(i) + " of mesh " + name + " are on the same vertex " + std::to_string(v) +
+                              " (each landmark needs its own vertex)");
     }
   }
   const auto dist = edge_graph_distances(mesh, V, landmarks[0]);

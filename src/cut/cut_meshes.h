@@ -20,7 +20,7 @@ struct CutOptions {
   Tree tree = Tree::kMinimumSpanning;
   bool geodesic_paths = true;  ///< search paths across faces and straighten them toward geodesics; if false,
                                ///< paths are shortest edge paths (cheaper, about 5-15% longer)
-  double snap = 0.1;          ///< boundary vertices closer than this fraction of an edge are paired, not inserted
+  double snap = 0.1;           ///< boundary vertices closer than this fraction of an edge are paired, not inserted
 };
 
 /// One mesh after cutting.

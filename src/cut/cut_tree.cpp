@@ -16,7 +16,8 @@ std::vector<std::array<int, 2>> minimum_spanning_tree(const Eigen::MatrixXd& W) 
   for (int step = 1; step < k; ++step) {
     int next = -1;
     for (int j = 0; j < k; ++j) {
-      if (!in_tree[static_cast<size_t>(j)] && (next < 0 || best[static_cast<size_t>(j)] < best[static_cast<size_t>(next)])) {
+      if (!in_tree[static_cast<size_t>(j)] &&
+          (next < 0 || best[static_cast<size_t>(j)] < best[static_cast<size_t>(next)])) {
         next = j;
       }
     }

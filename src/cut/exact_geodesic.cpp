@@ -32,7 +32,8 @@ std::vector<double> exact_geodesic_distances(const Eigen::MatrixXd& V, const Eig
   shortest.add_source_point(vertex[static_cast<size_t>(source)]);
   shortest.build_sequence_tree();
   std::vector<double> out;
-  for (const int t : targets) out.push_back(shortest.shortest_distance_to_source_points(vertex[static_cast<size_t>(t)]).first);
+  for (const int t : targets)
+    out.push_back(shortest.shortest_distance_to_source_points(vertex[static_cast<size_t>(t)]).first);
   return out;
 }
 

@@ -30,8 +30,7 @@ std::vector<double> edge_graph_distances(const Mesh& mesh, const Eigen::MatrixXd
   return dist;
 }
 
-Eigen::MatrixXd landmark_distances(const Mesh& mesh, const Eigen::MatrixXd& V,
-                                   const std::vector<VertexId>& landmarks) {
+Eigen::MatrixXd landmark_distances(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& landmarks) {
   const int k = static_cast<int>(landmarks.size());
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(k, k);
   for (int i = 0; i < k; ++i) {

@@ -17,7 +17,6 @@ std::vector<double> edge_graph_distances(const Mesh& mesh, const Eigen::MatrixXd
 
 /// k by k symmetric matrix of approximate geodesic distances between the landmarks (edge-graph distances).
 /// \pre landmarks are distinct valid vertices of a connected mesh.
-Eigen::MatrixXd landmark_distances(const Mesh& mesh, const Eigen::MatrixXd& V,
-                                   const std::vector<VertexId>& landmarks);
+Eigen::MatrixXd landmark_distances(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& landmarks);
 
 }  // namespace liftmap

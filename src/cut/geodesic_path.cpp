@@ -216,12 +216,14 @@ Eigen::Vector3d item_position(const RefinedMesh& r, const Item& it) {
 
 double items_length(const RefinedMesh& r, const std::vector<Item>& items) {
   double l = 0;
-  for (size_t i = 0; i + 1 < items.size(); ++i) l += (item_position(r, items[i + 1]) - item_position(r, items[i])).norm();
+  for (size_t i = 0; i + 1 < items.size(); ++i)
+    l += (item_position(r, items[i + 1]) - item_position(r, items[i])).norm();
   return l;
 }
 
 /// The taut path on one side, or empty if it cannot be computed.
-std::vector<Item> taut_side(const RefinedMesh& r, const std::vector<int>& path, const std::function<bool(int)>& blocked) {
+std::vector<Item> taut_side(const RefinedMesh& r, const std::vector<int>& path,
+                            const std::function<bool(int)>& blocked) {
   std::vector<Portal> portals;
   Eigen::Vector2d end;
   if (!left_strip(r, path, blocked, portals, end)) return {};

@@ -1,8 +1,8 @@
 #include "cut/refined_mesh.h"
 
 #include <algorithm>
-#include <iterator>
 #include <cassert>
+#include <iterator>
 #include <string>
 
 #include "core/errors.h"
@@ -176,7 +176,8 @@ void split_refined_mesh(RefinedMesh& refined, const Mesh& input, const std::vect
     const auto ba = bary_in_face(input, refined.on_input[static_cast<size_t>(s.a)], f_in);
     const auto bb = bary_in_face(input, refined.on_input[static_cast<size_t>(s.b)], f_in);
     std::array<double, 3> b{};
-    for (int k = 0; k < 3; ++k) b[static_cast<size_t>(k)] = (1.0 - s.t) * ba[static_cast<size_t>(k)] + s.t * bb[static_cast<size_t>(k)];
+    for (int k = 0; k < 3; ++k)
+      b[static_cast<size_t>(k)] = (1.0 - s.t) * ba[static_cast<size_t>(k)] + s.t * bb[static_cast<size_t>(k)];
     refined.on_input.push_back(canonical_point(input, f_in, b));
   }
   for (auto& pts : on_edge) std::sort(pts.begin(), pts.end());

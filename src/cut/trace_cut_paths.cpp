@@ -26,8 +26,8 @@ std::uint64_t edge_key(int u, int w) {
 struct Side {
   RefinedMesh& refined;
   const Mesh& input;
-  std::vector<int> landmark_of;  ///< per refined vertex, landmark index or -1
-  std::vector<char> on_tree;     ///< per refined vertex
+  std::vector<int> landmark_of;                      ///< per refined vertex, landmark index or -1
+  std::vector<char> on_tree;                         ///< per refined vertex
   std::unordered_map<std::uint64_t, int> tree_edge;  ///< refined edge -> tree edge index
 
   Side(RefinedMesh& r, const Mesh& in, const std::vector<int>& landmarks) : refined(r), input(in) {
@@ -337,8 +337,8 @@ TracedPaths trace_cut_paths(RefinedMesh& a, const Mesh& input_a, const std::vect
       sector = choose();
     }
     if (sector == -2) {
-      throw PipelineError("cut: no consistent path for tree edge (landmark " + std::to_string(parent) +
-                          ", landmark " + std::to_string(child) + ")");
+      throw PipelineError("cut: no consistent path for tree edge (landmark " + std::to_string(parent) + ", landmark " +
+                          std::to_string(child) + ")");
     }
     std::array<std::vector<int>, 2> paths;
     for (size_t s = 0; s < 2; ++s) {

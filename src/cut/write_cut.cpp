@@ -4,38 +4,28 @@
 #include <memory>
 
 #include "core/errors.h"
+#include "io/output_file.h"
 #include "io/write_mesh.h"
 
 namespace liftmap {
 
 namespace {
 
-using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
-File open_file(const std::string& path) {
-  File f(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!f) throw IoError(path + ": cannot open for writing");
-  return f;
-}
-
-void close_file(File f, const std::string& path) {
-  const bool bad = std::ferror(f.get()) != 0;
-  if (std::fclose(f.release()) != 0 || bad) throw IoError(path + ": write failed");
-}
-
 void write_side(const std::string& dir, const std::string& name, const CutSide& s, const Eigen::MatrixXd& UV) {
-  const Eigen::MatrixXd uv = UV.rows() == s.cut_to_refined.size() ? UV : Eigen::MatrixXd::Zero(s.cut_to_refined.size(), 2);
+  const Eigen::MatrixXd uv =
+      UV.rows() == s.cut_to_refined.size() ? UV : Eigen::MatrixXd::Zero(s.cut_to_refined.size(), 2);
   write_obj_with_uv(dir + "/cut_" + name + ".obj", s.V, s.F, uv, s.F_cut);
 
   const std::string graph = dir + "/cut_graph_" + name + ".obj";
-  File f = open_file(graph);
-  for (Eigen::Index i = 0; i < s.V.rows(); ++i) std::fprintf(f.get(), "v %.17g %.17g %.17g\n", s.V(i, 0), s.V(i, 1), s.V(i, 2));
+  OutputFile f(graph);
+  for (Eigen::Index i = 0; i < s.V.rows(); ++i)
+    std::fprintf(f.get(), "v %.17g %.17g %.17g\n", s.V(i, 0), s.V(i, 1), s.V(i, 2));
   for (const auto& path : s.paths) {
     std::fprintf(f.get(), "l");
     for (const int v : path) std::fprintf(f.get(), " %d", v + 1);
     std::fprintf(f.get(), "\n");
   }
-  close_file(std::move(f), graph);
+  f.close();
 }
 
 }  // namespace
@@ -45,9 +35,9 @@ void write_cut(const std::string& dir, const CutResult& result, const Eigen::Mat
   write_side(dir, "A", result.a, UV_a);
   write_side(dir, "B", result.b, UV_b);
   const std::string pairs = dir + "/boundary_map.txt";
-  File f = open_file(pairs);
+  OutputFile f(pairs);
   for (const auto& p : result.nu) std::fprintf(f.get(), "%d %d\n", p[0], p[1]);
-  close_file(std::move(f), pairs);
+  f.close();
 }
 
 }  // namespace liftmap

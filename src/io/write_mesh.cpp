@@ -5,25 +5,9 @@
 #include <memory>
 
 #include "core/errors.h"
+#include "io/output_file.h"
 
 namespace liftmap {
-
-namespace {
-
-using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
-File open_for_writing(const std::string& path) {
-  File f(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!f) throw IoError(path + ": cannot open for writing");
-  return f;
-}
-
-void close_checked(File f, const std::string& path) {
-  const bool write_error = std::ferror(f.get()) != 0;
-  if (std::fclose(f.release()) != 0 || write_error) throw IoError(path + ": write error (disk full?)");
-}
-
-}  // namespace
 
 void write_mesh(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -32,7 +16,7 @@ void write_mesh(const std::string& path, const Eigen::MatrixXd& V, const Eigen::
     return;
   }
   if (ext != ".off" && ext != ".ply") throw IoError(path + ": cannot write format '" + ext + "'");
-  File f = open_for_writing(path);
+  OutputFile f(path);
   if (ext == ".off") {
     std::fprintf(f.get(), "OFF\n%td %td 0\n", V.rows(), F.rows());
   } else {
@@ -43,12 +27,12 @@ void write_mesh(const std::string& path, const Eigen::MatrixXd& V, const Eigen::
   }
   for (Eigen::Index i = 0; i < V.rows(); ++i) std::fprintf(f.get(), "%.17g %.17g %.17g\n", V(i, 0), V(i, 1), V(i, 2));
   for (Eigen::Index i = 0; i < F.rows(); ++i) std::fprintf(f.get(), "3 %d %d %d\n", F(i, 0), F(i, 1), F(i, 2));
-  close_checked(std::move(f), path);
+  f.close();
 }
 
 void write_obj_with_uv(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                        const Eigen::MatrixXd& UV, const Eigen::MatrixXi& FT, const std::string& mtl) {
-  File f = open_for_writing(path);
+  OutputFile f(path);
   if (!mtl.empty()) std::fprintf(f.get(), "mtllib %s\nusemtl material\n", mtl.c_str());
   for (Eigen::Index i = 0; i < V.rows(); ++i) std::fprintf(f.get(), "v %.17g %.17g %.17g\n", V(i, 0), V(i, 1), V(i, 2));
   for (Eigen::Index i = 0; i < UV.rows(); ++i) std::fprintf(f.get(), "vt %.17g %.17g\n", UV(i, 0), UV(i, 1));
@@ -61,7 +45,7 @@ void write_obj_with_uv(const std::string& path, const Eigen::MatrixXd& V, const 
       std::fprintf(f.get(), "f %d %d %d\n", F(i, 0) + 1, F(i, 1) + 1, F(i, 2) + 1);
     }
   }
-  close_checked(std::move(f), path);
+  f.close();
 }
 
 }  // namespace liftmap

@@ -19,7 +19,9 @@
 
 namespace liftmap::test {
 
-inline TriangleMesh load(const std::string& name) { return read_mesh(std::string(LIFTMAP_DATA_DIR) + "/" + name + ".off"); }
+inline TriangleMesh load(const std::string& name) {
+  return read_mesh(std::string(LIFTMAP_DATA_DIR) + "/" + name + ".off");
+}
 
 inline double area(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   double a = 0;
@@ -45,7 +47,8 @@ inline std::vector<VertexId> landmark_set(const TriangleMesh& m, int k, Pattern 
     const auto d = edge_graph_distances(mesh, m.V, s);
     std::vector<int> order(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) order[static_cast<size_t>(i)] = i;
-    std::sort(order.begin(), order.end(), [&](int x, int y) { return d[static_cast<size_t>(x)] < d[static_cast<size_t>(y)]; });
+    std::sort(order.begin(), order.end(),
+              [&](int x, int y) { return d[static_cast<size_t>(x)] < d[static_cast<size_t>(y)]; });
     if (pattern == Pattern::kClose) {
       pool.assign(order.begin(), order.begin() + std::min(n, 3 * k));
     } else {
@@ -119,7 +122,8 @@ inline void check_side(const CutSide& s, const TriangleMesh& in, const std::vect
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d p = s.V.row(s.F(f, k));
       // Signed sub-areas: non-negative iff p is in the triangle (p is in its plane).
-      const double wa = (b - p).cross(c - p).dot(nrm), wb = (c - p).cross(a - p).dot(nrm), wc = (a - p).cross(b - p).dot(nrm);
+      const double wa = (b - p).cross(c - p).dot(nrm), wb = (c - p).cross(a - p).dot(nrm),
+                   wc = (a - p).cross(b - p).dot(nrm);
       const double tol = 1e-9 * nrm.squaredNorm();
       EXPECT_TRUE(wa >= -tol && wb >= -tol && wc >= -tol) << "refined face " << f;
     }
@@ -221,8 +225,8 @@ inline void run(const Case& c, int k, Pattern pattern, unsigned seed, const CutO
   std::mt19937 rng(seed);
   const auto la = landmark_set(ma, k, pattern, rng);
   const auto lb = landmark_set(mb, k, pattern, rng);
-  const std::string what = std::string(c.a) + "-" + c.b + " k=" + std::to_string(k) + " pattern=" +
-                           std::to_string(static_cast<int>(pattern)) + " seed=" + std::to_string(seed);
+  const std::string what = std::string(c.a) + "-" + c.b + " k=" + std::to_string(k) +
+                           " pattern=" + std::to_string(static_cast<int>(pattern)) + " seed=" + std::to_string(seed);
   SCOPED_TRACE(what);
   try {
     const CutResult r = cut_meshes(ma.V, ma.F, mb.V, mb.F, la, lb, options);

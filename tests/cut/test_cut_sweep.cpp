@@ -9,8 +9,8 @@ namespace liftmap {
 namespace {
 
 TEST(cut_sweep, HundredsOfRandomConfigurations) {
-  const char* meshes[] = {"camel", "cow", "bull", "dino", "triceratops", "homer", "man", "armadillo",
-                          "bear", "fandisk", "hand", "blobby"};
+  const char* meshes[] = {"camel", "cow",       "bull", "dino",    "triceratops", "homer",
+                          "man",   "armadillo", "bear", "fandisk", "hand",        "blobby"};
   const auto n = static_cast<unsigned>(std::size(meshes));
   std::mt19937 rng(2014);
   constexpr int kConfigurations = 300;

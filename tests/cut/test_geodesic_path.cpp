@@ -19,7 +19,8 @@ TEST(cut_exact_geodesic, FlatSquare) {
   EXPECT_NEAR(d[2], 1.0, 1e-12);
 }
 
-// The first tree path (two landmarks, nothing in the way; later paths are constrained by the cut) is within 0.5% of the exact geodesic distance.
+// The first tree path (two landmarks, nothing in the way; later paths are constrained by the cut) is within 0.5% of the
+// exact geodesic distance.
 void expect_near_geodesic(const char* name, unsigned seed, int pairs, double* worst) {
   const auto m = test::load(name);
   std::mt19937 rng(seed);
@@ -54,7 +55,8 @@ TEST(cut_geodesic_path, StepsShortenEdgePaths) {
   }
   const auto length = [&](const std::vector<int>& p) {
     double l = 0;
-    for (size_t i = 0; i + 1 < p.size(); ++i) l += (r.positions[static_cast<size_t>(p[i + 1])] - r.positions[static_cast<size_t>(p[i])]).norm();
+    for (size_t i = 0; i + 1 < p.size(); ++i)
+      l += (r.positions[static_cast<size_t>(p[i + 1])] - r.positions[static_cast<size_t>(p[i])]).norm();
     return l;
   };
   const double edge_length = length(path);

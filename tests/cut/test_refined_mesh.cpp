@@ -48,8 +48,10 @@ TEST(cut_refined_mesh, RandomSplitsKeepTheSurface) {
   EXPECT_NEAR(test::area(r.vertex_matrix(), r.face_matrix()), test::area(in.V, in.F), 1e-9 * test::area(in.V, in.F));
   const double scale = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
   for (int v = 0; v < r.n_vertices(); ++v) {
-    EXPECT_LT((interpolate(input, in.V, r.on_input[static_cast<size_t>(v)]) - r.positions[static_cast<size_t>(v)].transpose()).norm(),
-              1e-12 * scale);
+    EXPECT_LT(
+        (interpolate(input, in.V, r.on_input[static_cast<size_t>(v)]) - r.positions[static_cast<size_t>(v)].transpose())
+            .norm(),
+        1e-12 * scale);
   }
   // No degenerate face.
   for (const auto& f : r.faces) {

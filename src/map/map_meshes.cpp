@@ -1,0 +1,380 @@
+#include "map/map_meshes.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "check/check_mesh.h"
+#include "core/errors.h"
+#include "flatten/distortion.h"
+#include "flatten/flattening_checks.h"
+#include "flatten/jacobian.h"
+
+namespace liftmap {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Barycentric coordinates of p in the triangle (a, b, c) of R^3, p assumed in (or very near) its plane.
+std::array<double, 3> barycentric_3d(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                     const Eigen::Vector3d& c) {
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const double nn = n.squaredNorm();
+  std::array<double, 3> w{(c - b).cross(p - b).dot(n) / nn, (a - c).cross(p - c).dot(n) / nn, 0.0};
+  w[2] = 1.0 - w[0] - w[1];
+  return w;
+}
+
+// Clamps rounding noise (coordinates of order -1e-16) so that the point is a valid face point.
+std::array<double, 3> clamp_barycentric(std::array<double, 3> w) {
+  double sum = 0;
+  for (double& x : w) {
+    x = std::max(x, 0.0);
+    sum += x;
+  }
+  for (double& x : w) x /= sum;
+  return w;
+}
+
+Eigen::Vector3d row3(const Eigen::MatrixXd& V, int i) { return V.row(i).transpose(); }
+
+double total_area(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  double a = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    a += 0.5 * (row3(V, F(f, 1)) - row3(V, F(f, 0))).cross(row3(V, F(f, 2)) - row3(V, F(f, 0))).norm();
+  }
+  return a;
+}
+
+/// Everything needed to translate between one input mesh and its cut disk.
+struct SideTranslator {
+  const Eigen::MatrixXd* V_input = nullptr;
+  const Eigen::MatrixXi* F_input = nullptr;
+  const CutSide* side = nullptr;                   // points into the owning MapIndex
+  std::vector<int> refined_to_cut;                 // a cut copy of each refined vertex
+  std::vector<std::vector<int>> refined_of_input;  // refined (= disk) faces inside each input face
+
+  SideTranslator(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const CutSide& s)
+      : V_input(&V), F_input(&F), side(&s) {
+    refined_to_cut.assign(static_cast<size_t>(s.V.rows()), -1);
+    for (Eigen::Index c = s.cut_to_refined.size() - 1; c >= 0; --c) {
+      refined_to_cut[static_cast<size_t>(s.cut_to_refined(c))] = static_cast<int>(c);
+    }
+    refined_of_input.resize(static_cast<size_t>(F.rows()));
+    for (Eigen::Index f = 0; f < s.face_to_input.size(); ++f) {
+      refined_of_input[static_cast<size_t>(s.face_to_input(f))].push_back(static_cast<int>(f));
+    }
+  }
+
+  /// A point of the disk (any kind) as a face point of the input mesh.
+  [[nodiscard]] SurfacePoint to_input(const Mesh& disk, const SurfacePoint& p) const {
+    const SurfacePoint q = as_face_point(disk, p);
+    const int fc = q.face.idx;
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) x += q.bary[static_cast<size_t>(k)] * row3(side->V, side->F(fc, k));
+    const int fi = side->face_to_input(fc);
+    const Eigen::MatrixXi& F = *F_input;
+    const auto w = barycentric_3d(x, row3(*V_input, F(fi, 0)), row3(*V_input, F(fi, 1)), row3(*V_input, F(fi, 2)));
+    return SurfacePoint::in_face(FaceId(fi), clamp_barycentric(w));
+  }
+
+  /// A face point of the input mesh as a face point of the disk.
+  [[nodiscard]] SurfacePoint to_disk(const SurfacePoint& p) const {
+    const Eigen::MatrixXi& F = *F_input;
+    const int fi = p.face.idx;
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * row3(*V_input, F(fi, k));
+    int best = -1;
+    std::array<double, 3> best_w{};
+    double best_min = -std::numeric_limits<double>::infinity();
+    for (int fc : refined_of_input[static_cast<size_t>(fi)]) {
+      const auto w = barycentric_3d(x, row3(side->V, side->F(fc, 0)), row3(side->V, side->F(fc, 1)),
+                                    row3(side->V, side->F(fc, 2)));
+      const double m = std::min({w[0], w[1], w[2]});
+      if (m > best_min) {
+        best_min = m;
+        best = fc;
+        best_w = w;
+      }
+    }
+    if (best < 0 || best_min < -1e-9) {
+      throw PipelineError("map: point of input face " + std::to_string(fi) + " is in none of its refined faces");
+    }
+    return SurfacePoint::in_face(FaceId(best), clamp_barycentric(best_w));
+  }
+
+  /// Position in R^3 of a face point of the input mesh.
+  [[nodiscard]] Eigen::Vector3d position(const SurfacePoint& p) const {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * row3(*V_input, (*F_input)(p.face.idx, k));
+    return x;
+  }
+};
+
+DistortionStats weighted_stats(const Eigen::VectorXd& values, const Eigen::VectorXd& weights) {
+  DistortionStats s;
+  if (values.size() == 0) return s;
+  std::vector<int> order(static_cast<size_t>(values.size()));
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return values(a) < values(b); });
+  const double total = weights.sum();
+  s.mean = values.dot(weights) / total;
+  s.max = values.maxCoeff();
+  double acc = 0;
+  bool have_median = false;
+  for (int i : order) {
+    acc += weights(i);
+    if (!have_median && acc >= 0.5 * total) {
+      s.median = values(i);
+      have_median = true;
+    }
+    if (acc >= 0.95 * total) {
+      s.p95 = values(i);
+      break;
+    }
+  }
+  return s;
+}
+
+Eigen::Matrix2d jacobian_matrix(const Eigen::MatrixXd& P, int f) {
+  const double alpha = P(f, 0), beta = P(f, 1), gamma = P(f, 2), delta = P(f, 3);
+  Eigen::Matrix2d A;
+  A << alpha + gamma, delta - beta, beta + delta, alpha - gamma;
+  return A;
+}
+
+/// Per-sample distortion max(Sigma, 1/sigma) of the map from one disk to the other, J = A_target^-1 A_source.
+void sample_map_distortion(const Mesh& source, const Eigen::MatrixXd& P_source, const Eigen::VectorXd& area_source,
+                           const Mesh& target, const Eigen::MatrixXd& P_target, int n,
+                           const std::function<SurfacePoint(const SurfacePoint&)>& map, Eigen::VectorXd& values,
+                           Eigen::VectorXd& weights) {
+  const int nf = source.n_faces();
+  const int per_face = n * n;
+  values.resize(static_cast<Eigen::Index>(nf) * per_face);
+  weights.resize(values.size());
+  // Centroids of the n^2 sub-triangles of a face (upright and inverted), all of equal area.
+  std::vector<std::array<double, 3>> samples;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j + i < n; ++j) {
+      samples.push_back({(i + 1.0 / 3) / n, (j + 1.0 / 3) / n, 1.0 - (i + j + 2.0 / 3) / n});
+      if (i + j + 1 < n) samples.push_back({(i + 2.0 / 3) / n, (j + 2.0 / 3) / n, 1.0 - (i + j + 4.0 / 3) / n});
+    }
+  }
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Matrix2d A = jacobian_matrix(P_source, f);
+    for (int s = 0; s < per_face; ++s) {
+      const SurfacePoint y =
+          as_face_point(target, map(SurfacePoint::in_face(FaceId(f), samples[static_cast<size_t>(s)])));
+      const Eigen::Matrix2d J = jacobian_matrix(P_target, y.face.idx).inverse() * A;
+      const Eigen::Vector2d sv = Eigen::JacobiSVD<Eigen::Matrix2d>(J).singularValues();
+      const auto k = static_cast<Eigen::Index>(f) * per_face + s;
+      values(k) = std::max(sv(0), 1.0 / sv(1));
+      weights(k) = area_source(f) / per_face;
+    }
+  }
+}
+
+}  // namespace
+
+struct MapIndex {
+  Eigen::MatrixXd VA, VB;
+  Eigen::MatrixXi FA, FB;
+  CutSide cut_a, cut_b;
+  Mesh input_a, input_b;
+  std::unique_ptr<SideTranslator> a, b;
+};
+
+MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
+                     const std::vector<VertexId>& landmarks_b, const MapOptions& options) {
+  const auto t_start = Clock::now();
+  auto progress = [&](const std::string& stage, const std::string& message) {
+    if (options.progress) options.progress(stage, message);
+  };
+  require_mappable(check_mesh(VA, FA), "mesh A");
+  require_mappable(check_mesh(VB, FB), "mesh B");
+  if (landmarks_a.size() != landmarks_b.size() || landmarks_a.size() < 2) {
+    throw InvalidInputError("map: need at least 2 corresponding landmarks on each mesh");
+  }
+
+  MapResult r;
+  auto t0 = Clock::now();
+  progress("cut",
+           "cutting both meshes to disks along a tree through " + std::to_string(landmarks_a.size()) + " landmarks");
+  r.cut = cut_meshes(VA, FA, VB, FB, landmarks_a, landmarks_b, options.cut);
+  r.seconds.cut = seconds_since(t0);
+  const auto n_cut_a = static_cast<int>(r.cut.a.cut_to_refined.size());
+  const auto n_cut_b = static_cast<int>(r.cut.b.cut_to_refined.size());
+  r.disk_a = Mesh(r.cut.a.F_cut, n_cut_a);
+  r.disk_b = Mesh(r.cut.b.F_cut, n_cut_b);
+  r.disk_va = r.cut.a.V(r.cut.a.cut_to_refined, Eigen::all);
+  r.disk_vb = r.cut.b.V(r.cut.b.cut_to_refined, Eigen::all);
+  {
+    std::ostringstream s;
+    s << "done in " << r.seconds.cut << " s: disks of " << r.disk_a.n_faces() << " and " << r.disk_b.n_faces()
+      << " faces, " << r.cut.nu.size() << " boundary vertices each";
+    progress("cut", s.str());
+  }
+
+  t0 = Clock::now();
+  FlatteningDisk m{&r.disk_a, r.disk_va, {}};
+  FlatteningDisk n{&r.disk_b, r.disk_vb, {}};
+  for (const auto& pair : r.cut.nu) {
+    m.boundary.emplace_back(pair[0]);
+    n.boundary.emplace_back(pair[1]);
+  }
+  progress("flatten", "Tutte start and convex subproblems (10)");
+  r.flattening = joint_flatten(m, n, options.flatten);
+  r.seconds.flatten = seconds_since(t0);
+  for (size_t i = 0; i < r.flattening.iterations.size(); ++i) {
+    const auto& it = r.flattening.iterations[i];
+    std::ostringstream s;
+    s << (i == 0 ? "start" : "iteration " + std::to_string(i)) << ": energy " << it.energy << ", max distortion "
+      << it.max_distortion << " (" << it.seconds << " s)";
+    progress("flatten", s.str());
+  }
+  if (!r.flattening.stop_reason.empty()) progress("flatten", "stopped early: " + r.flattening.stop_reason);
+  r.scale_a = r.flattening.scale_m;
+  r.scale_b = r.flattening.scale_n;
+
+  t0 = Clock::now();
+  progress("lift", "lifting the flattenings into the bijection");
+  Eigen::MatrixXi nu(static_cast<Eigen::Index>(r.cut.nu.size()), 2);
+  for (size_t i = 0; i < r.cut.nu.size(); ++i) nu.row(static_cast<Eigen::Index>(i)) << r.cut.nu[i][0], r.cut.nu[i][1];
+  r.bijection =
+      std::make_shared<LiftedBijection>(r.disk_a, r.flattening.Phi, r.disk_b, r.flattening.Psi, nu, options.lift);
+  auto index = std::make_shared<MapIndex>();
+  index->VA = VA;
+  index->FA = FA;
+  index->VB = VB;
+  index->FB = FB;
+  index->input_a = Mesh(FA, static_cast<int>(VA.rows()));
+  index->input_b = Mesh(FB, static_cast<int>(VB.rows()));
+  index->cut_a = r.cut.a;
+  index->cut_b = r.cut.b;
+  index->a = std::make_unique<SideTranslator>(index->VA, index->FA, index->cut_a);
+  index->b = std::make_unique<SideTranslator>(index->VB, index->FB, index->cut_b);
+  r.index = index;
+  const SideTranslator& ta = *index->a;
+  const SideTranslator& tb = *index->b;
+  r.cut_a_to_b.resize(static_cast<size_t>(n_cut_a));
+  r.cut_b_to_a.resize(static_cast<size_t>(n_cut_b));
+  for (int c = 0; c < n_cut_a; ++c)
+    r.cut_a_to_b[static_cast<size_t>(c)] = as_face_point(r.disk_b, r.bijection->f()[VertexId(c)]);
+  for (int c = 0; c < n_cut_b; ++c)
+    r.cut_b_to_a[static_cast<size_t>(c)] = as_face_point(r.disk_a, r.bijection->g()[VertexId(c)]);
+  // Input vertex i is refined vertex i (refinement only appends vertices).
+  auto input_map = [](const Eigen::MatrixXd& V, const SideTranslator& from, const SideTranslator& to,
+                      const Mesh& disk_to, const std::vector<SurfacePoint>& cut_map, const char* name) {
+    std::vector<SurfacePoint> out(static_cast<size_t>(V.rows()));
+    for (Eigen::Index v = 0; v < V.rows(); ++v) {
+      if (from.side->V.row(v) != V.row(v)) {
+        throw PipelineError(std::string("map: refined vertex ") + std::to_string(v) + " of mesh " + name +
+                            " is not input vertex " + std::to_string(v));
+      }
+      const int c = from.refined_to_cut[static_cast<size_t>(v)];
+      out[static_cast<size_t>(v)] = to.to_input(disk_to, cut_map[static_cast<size_t>(c)]);
+    }
+    return out;
+  };
+  r.a_to_b = input_map(VA, ta, tb, r.disk_b, r.cut_a_to_b, "A");
+  r.b_to_a = input_map(VB, tb, ta, r.disk_a, r.cut_b_to_a, "B");
+  r.seconds.lift = seconds_since(t0);
+  progress("lift", "done in " + std::to_string(r.seconds.lift) + " s");
+
+  // Verification and distortion.
+  t0 = Clock::now();
+  MapVerification& ver = r.verification;
+  const Eigen::MatrixXd& Phi = r.flattening.Phi;
+  const Eigen::MatrixXd& Psi = r.flattening.Psi;
+  {
+    const Eigen::VectorXd da = signed_double_areas(r.cut.a.F_cut, Phi);
+    const Eigen::VectorXd db = signed_double_areas(r.cut.b.F_cut, Psi);
+    ver.min_orientation = std::min(da.minCoeff() / da.mean(), db.minCoeff() / db.mean());
+    const Eigen::VectorXd sa = angle_sums(r.disk_a, Phi), sb = angle_sums(r.disk_b, Psi);
+    for (const auto& pair : r.cut.nu) {
+      ver.max_boundary_angle_sum = std::max({ver.max_boundary_angle_sum, sa(pair[0]), sb(pair[1])});
+    }
+  }
+  const double diameter = (Phi.colwise().maxCoeff() - Phi.colwise().minCoeff()).norm();
+  for (int c = 0; c < n_cut_a; ++c) {
+    const Eigen::RowVectorXd z = interpolate(r.disk_b, Psi, r.bijection->f()[VertexId(c)]);
+    ver.lifting_residual = std::max(ver.lifting_residual, (z - Phi.row(c)).norm() / diameter);
+  }
+  for (int c = 0; c < n_cut_b; ++c) {
+    const Eigen::RowVectorXd z = interpolate(r.disk_a, Phi, r.bijection->g()[VertexId(c)]);
+    ver.lifting_residual = std::max(ver.lifting_residual, (z - Psi.row(c)).norm() / diameter);
+  }
+  const double sqrt_area_a = std::sqrt(total_area(VA, FA)), sqrt_area_b = std::sqrt(total_area(VB, FB));
+  for (Eigen::Index v = 0; v < VA.rows(); ++v) {
+    const SurfacePoint back = evaluate_map(r, Side::kB, r.a_to_b[static_cast<size_t>(v)]);
+    ver.round_trip_error =
+        std::max(ver.round_trip_error, (ta.position(back) - row3(VA, static_cast<int>(v))).norm() / sqrt_area_a);
+  }
+  for (Eigen::Index v = 0; v < VB.rows(); ++v) {
+    const SurfacePoint back = evaluate_map(r, Side::kA, r.b_to_a[static_cast<size_t>(v)]);
+    ver.round_trip_error =
+        std::max(ver.round_trip_error, (tb.position(back) - row3(VB, static_cast<int>(v))).norm() / sqrt_area_b);
+  }
+  for (size_t i = 0; i < landmarks_a.size(); ++i) {
+    const int la = landmarks_a[i].idx, lb = landmarks_b[i].idx;
+    ver.landmark_error = std::max(ver.landmark_error,
+                                  (tb.position(r.a_to_b[static_cast<size_t>(la)]) - row3(VB, lb)).norm() / sqrt_area_b);
+    ver.landmark_error = std::max(ver.landmark_error,
+                                  (ta.position(r.b_to_a[static_cast<size_t>(lb)]) - row3(VA, la)).norm() / sqrt_area_a);
+  }
+  auto require = [&](bool ok, const std::string& what) {
+    if (!ok) ver.failures.push_back(what);
+  };
+  require(ver.min_orientation > 0,
+          "a flattened face is flipped or degenerate (min orientation " + std::to_string(ver.min_orientation) + ")");
+  require(ver.max_boundary_angle_sum < 2 * M_PI,
+          "a boundary angle sum reaches 2 pi (" + std::to_string(ver.max_boundary_angle_sum) + ")");
+  require(ver.lifting_residual < 1e-9, "lifting residual " + std::to_string(ver.lifting_residual) + " >= 1e-9");
+  require(ver.round_trip_error < 1e-9, "round trip error " + std::to_string(ver.round_trip_error) + " >= 1e-9");
+  require(ver.landmark_error < 1e-12, "landmark error " + std::to_string(ver.landmark_error) + " >= 1e-12");
+  ver.passed = ver.failures.empty();
+
+  // Distortion, on both meshes scaled to the same area as the flattening does.
+  const JacobianOperator op_a = jacobian_operator(r.disk_va * r.scale_a, r.cut.a.F_cut);
+  const JacobianOperator op_b = jacobian_operator(r.disk_vb * r.scale_b, r.cut.b.F_cut);
+  const Eigen::MatrixXd P_a = similarity_parts(op_a, r.cut.a.F_cut, Phi * r.scale_a);
+  const Eigen::MatrixXd P_b = similarity_parts(op_b, r.cut.b.F_cut, Psi * r.scale_a);
+  r.distortion_phi = weighted_stats(true_distortion(P_a), op_a.area);
+  r.distortion_psi = weighted_stats(true_distortion(P_b), op_b.area);
+  const int n_samples = std::max(1, options.distortion_samples_per_edge);
+  const LiftedBijection& bij = *r.bijection;
+  Eigen::VectorXd g_values, g_weights;
+  sample_map_distortion(
+      r.disk_a, P_a, op_a.area, r.disk_b, P_b, n_samples, [&](const SurfacePoint& x) { return bij.evaluate_f(x); },
+      r.f_samples, r.f_weights);
+  sample_map_distortion(
+      r.disk_b, P_b, op_b.area, r.disk_a, P_a, n_samples, [&](const SurfacePoint& y) { return bij.evaluate_g(y); },
+      g_values, g_weights);
+  r.distortion_f = weighted_stats(r.f_samples, r.f_weights);
+  r.distortion_g = weighted_stats(g_values, g_weights);
+  r.seconds.verify = seconds_since(t0);
+  r.seconds.total = seconds_since(t_start);
+  progress("verify", ver.passed ? "passed" : "FAILED: " + ver.failures.front());
+  return r;
+}
+
+SurfacePoint evaluate_map(const MapResult& map, Side side, const SurfacePoint& x) {
+  const MapIndex& index = *map.index;
+  const bool from_a = side == Side::kA;
+  const SideTranslator& from = from_a ? *index.a : *index.b;
+  const SideTranslator& to = from_a ? *index.b : *index.a;
+  const SurfacePoint on_disk = from.to_disk(as_face_point(from_a ? index.input_a : index.input_b, x));
+  const SurfacePoint image = from_a ? map.bijection->evaluate_f(on_disk) : map.bijection->evaluate_g(on_disk);
+  return to.to_input(from_a ? map.disk_b : map.disk_a, image);
+}
+
+}  // namespace liftmap

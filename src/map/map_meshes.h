@@ -1,0 +1,100 @@
+#pragma once
+/// The whole pipeline (paper §3, Figure 2): cut both meshes to disks, flatten them jointly, lift the flattenings
+/// into the bijection, express it on the input meshes, and verify it.
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/surface_point.h"
+#include "cut/cut_meshes.h"
+#include "flatten/joint_flatten.h"
+#include "lift/lift_map.h"
+
+namespace liftmap {
+
+/// Settings of `map_meshes`; every stage's own settings with their defaults.
+struct MapOptions {
+  CutOptions cut;
+  JointFlattenOptions flatten;
+  LiftOptions lift;
+  /// Distortion of the maps f and g is measured by dense sampling: each face is split into n^2 sub-triangles
+  /// and the map is evaluated at their centroids, each weighted by its area.
+  int distortion_samples_per_edge = 2;
+  /// Called with (stage, message) as the pipeline advances; empty: silent.
+  std::function<void(const std::string&, const std::string&)> progress;
+};
+
+/// Area-weighted statistics of a per-face (or per-sample) distortion max(Sigma, 1/sigma) (paper §4.2).
+struct DistortionStats {
+  double mean = 0;    ///< area-weighted mean
+  double median = 0;  ///< area-weighted median
+  double p95 = 0;     ///< area-weighted 95th percentile
+  double max = 0;
+};
+
+/// Checks of the final map; `passed` is false if any of them fails its tolerance.
+struct MapVerification {
+  double min_orientation = 0;         ///< min over both flattenings of signed area / mean area (> 0 required)
+  double max_boundary_angle_sum = 0;  ///< max over boundary vertices of both flattenings (< 2 pi required)
+  double lifting_residual = 0;        ///< max |Psi(f(x)) - Phi(x)| and |Phi(g(y)) - Psi(y)| over vertices, / diameter
+  double round_trip_error = 0;        ///< max |g(f(v)) - v| and |f(g(w)) - w| in R^3 over input vertices, / sqrt(area)
+  double landmark_error = 0;          ///< max distance in R^3 from f(landmark) to its partner (and for g), / sqrt(area)
+  bool passed = false;
+  std::vector<std::string> failures;  ///< one line per failed check
+};
+
+/// Wall time of each stage, seconds.
+struct MapTimings {
+  double cut = 0, flatten = 0, lift = 0, verify = 0, total = 0;
+};
+
+struct MapIndex;  // translation between the input meshes and their disks (defined in map_meshes.cpp)
+
+/// The map between two input meshes A and B and everything it was made of.
+struct MapResult {
+  CutResult cut;                               ///< refined and cut meshes with provenance, boundary correspondence nu
+  Mesh disk_a, disk_b;                         ///< connectivity of the cut meshes (cut.a.F_cut, cut.b.F_cut)
+  Eigen::MatrixXd disk_va, disk_vb;            ///< #Vc by 3 positions of the cut meshes' vertices
+  JointFlattenResult flattening;               ///< Phi (of disk_a), Psi (of disk_b), energies per outer iteration
+  std::shared_ptr<LiftedBijection> bijection;  ///< f: disk_a -> disk_b, g: disk_b -> disk_a
+
+  std::vector<SurfacePoint> a_to_b;      ///< per input vertex of A, its image as a face point of input B
+  std::vector<SurfacePoint> b_to_a;      ///< per input vertex of B, its image as a face point of input A
+  std::vector<SurfacePoint> cut_a_to_b;  ///< per cut vertex of A, its image as a face point of disk_b
+  std::vector<SurfacePoint> cut_b_to_a;  ///< per cut vertex of B, its image as a face point of disk_a
+
+  DistortionStats distortion_phi, distortion_psi;  ///< per face of the flattenings
+  DistortionStats distortion_f, distortion_g;      ///< of the maps, by dense sampling
+  Eigen::VectorXd f_samples, f_weights;            ///< the sampled distortion of f and the samples' areas
+  double scale_a = 1, scale_b = 1;                 ///< factors that give both meshes the same area
+  MapVerification verification;
+  MapTimings seconds;
+  std::shared_ptr<const MapIndex> index;  ///< used by evaluate_map
+};
+
+/// Computes the lifted bijection between two closed genus-0 meshes with corresponding landmarks.
+/// \param VA, VB #V by 3 positions; FA, FB #F by 3 faces
+/// \param landmarks_a, landmarks_b k >= 2 corresponding vertices
+/// \throw InvalidInputError if a mesh cannot be mapped (see check_mesh) or the landmarks are invalid;
+///        PipelineError if a stage fails. A map whose verification fails is returned with
+///        `verification.passed == false`: the caller decides (the CLI writes it and exits with an error).
+MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
+                     const std::vector<VertexId>& landmarks_b, const MapOptions& options = {});
+
+/// Which input mesh a point or a map starts from.
+enum class Side { kA, kB };
+
+/// Evaluates the map at any point of an input mesh (texture transfer, sampling): f for a point of A, g for a
+/// point of B.
+/// \param side the mesh x lies on: kA evaluates f, kB evaluates g
+/// \param x a point of that input mesh (vertex, edge or face point of the input connectivity)
+/// \return its image as a face point of the other input mesh
+/// \throw PipelineError if the point cannot be located (a face point outside its face)
+SurfacePoint evaluate_map(const MapResult& map, Side side, const SurfacePoint& x);
+
+}  // namespace liftmap

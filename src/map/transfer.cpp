@@ -1,0 +1,106 @@
+#include "map/transfer.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "core/errors.h"
+#include "io/output_file.h"
+
+namespace liftmap {
+
+Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X,
+                               const std::vector<SurfacePoint>& points) {
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(points.size()), X.cols());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const SurfacePoint& p = points[i];
+    if (p.kind != SurfacePoint::Kind::kFace || p.face.idx < 0 || p.face.idx >= F.rows()) {
+      throw InvalidInputError("point " + std::to_string(i) + " names face " + std::to_string(p.face.idx) +
+                              ", but the mesh has " + std::to_string(F.rows()) + " faces");
+    }
+    const auto r = static_cast<Eigen::Index>(i);
+    out.row(r).setZero();
+    for (int k = 0; k < 3; ++k) {
+      const int v = F(p.face.idx, k);
+      if (v >= X.rows()) {
+        throw InvalidInputError("the data has " + std::to_string(X.rows()) + " rows, but face " +
+                                std::to_string(p.face.idx) + " uses vertex " + std::to_string(v));
+      }
+      out.row(r) += p.bary[static_cast<size_t>(k)] * X.row(v);
+    }
+  }
+  return out;
+}
+
+Eigen::MatrixXd read_attributes(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(path + ": cannot open attribute file");
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::istringstream s(line);
+    std::vector<double> row;
+    std::string token;
+    while (s >> token) {
+      char* end = nullptr;
+      const double x = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0') {
+        throw IoError(path + ":" + std::to_string(line_no) + ": '" + token + "' is not a number");
+      }
+      row.push_back(x);
+    }
+    if (row.empty()) continue;
+    if (!rows.empty() && row.size() != rows.front().size()) {
+      throw IoError(path + ":" + std::to_string(line_no) + ": " + std::to_string(row.size()) +
+                    " columns, but the first row has " + std::to_string(rows.front().size()));
+    }
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty()) throw IoError(path + ": no attribute rows");
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    for (size_t j = 0; j < rows[i].size(); ++j)
+      X(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
+  }
+  return X;
+}
+
+void write_attributes(const std::string& path, const Eigen::MatrixXd& X) {
+  OutputFile f(path);
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    for (Eigen::Index j = 0; j < X.cols(); ++j) std::fprintf(f.get(), j == 0 ? "%.17g" : " %.17g", X(i, j));
+    std::fprintf(f.get(), "\n");
+  }
+  f.close();
+}
+
+MapDifference compare_maps(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<SurfacePoint>& map,
+                           const std::vector<SurfacePoint>& truth) {
+  if (map.size() != truth.size()) {
+    throw InvalidInputError("the maps have " + std::to_string(map.size()) + " and " + std::to_string(truth.size()) +
+                            " lines: they do not start from the same mesh");
+  }
+  double area = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  const Eigen::MatrixXd P = interpolate_at(F, V, map);
+  const Eigen::MatrixXd Q = interpolate_at(F, V, truth);
+  MapDifference d;
+  if (map.empty()) return d;
+  const Eigen::VectorXd dist = (P - Q).rowwise().norm() / std::sqrt(area);
+  d.mean = dist.mean();
+  Eigen::Index worst = 0;
+  d.max = dist.maxCoeff(&worst);
+  d.worst_vertex = static_cast<int>(worst);
+  return d;
+}
+
+}  // namespace liftmap

@@ -1,0 +1,42 @@
+#pragma once
+/// Using a map file: carrying data from one mesh to the other and comparing maps.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/surface_point.h"
+
+namespace liftmap {
+
+/// Interpolates per-vertex data of a mesh at points of it.
+/// \param F #F by 3 faces of the mesh the points lie on
+/// \param X #V by k per-vertex data of that mesh (positions, attributes, texture coordinates)
+/// \param points face points of that mesh (e.g. a map file B_to_A read with read_vertex_map)
+/// \return #points by k interpolated rows
+/// \throw InvalidInputError if a point's face is out of range
+Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X,
+                               const std::vector<SurfacePoint>& points);
+
+/// Reads per-vertex attributes: a text file of one row of whitespace-separated numbers per vertex (`#` comments).
+/// \throw IoError naming the file and line for a malformed row or rows of different lengths
+Eigen::MatrixXd read_attributes(const std::string& path);
+
+/// Writes per-vertex attributes in the format of read_attributes (17 significant digits).
+void write_attributes(const std::string& path, const Eigen::MatrixXd& X);
+
+/// Distance between two maps into the same mesh, per source vertex, in R^3, relative to sqrt(area) of the
+/// target (a Euclidean, not geodesic, distance).
+struct MapDifference {
+  double mean = 0;
+  double max = 0;
+  int worst_vertex = -1;
+};
+
+/// Compares a map with a ground-truth map (both face points of the target mesh, one per source vertex).
+/// \param V, F the target mesh
+/// \throw InvalidInputError if the two maps have different lengths
+MapDifference compare_maps(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<SurfacePoint>& map,
+                           const std::vector<SurfacePoint>& truth);
+
+}  // namespace liftmap

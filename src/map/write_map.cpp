@@ -1,0 +1,142 @@
+#include "map/write_map.h"
+
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/errors.h"
+#include "io/output_file.h"
+#include "io/write_mesh.h"
+
+namespace liftmap {
+
+namespace {
+
+nlohmann::json stats_json(const DistortionStats& s) {
+  return {{"mean", s.mean}, {"median", s.median}, {"p95", s.p95}, {"max", s.max}};
+}
+
+}  // namespace
+
+void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& images, const std::string& header) {
+  OutputFile f(path);
+  std::istringstream lines(header);
+  for (std::string line; std::getline(lines, line);) std::fprintf(f.get(), "# %s\n", line.c_str());
+  std::fprintf(f.get(), "# one line per source vertex: face b0 b1 b2 (0-based face of the target mesh)\n");
+  for (const SurfacePoint& p : images) {
+    std::fprintf(f.get(), "%d %.17g %.17g %.17g\n", p.face.idx, p.bary[0], p.bary[1], p.bary[2]);
+  }
+  f.close();
+}
+
+std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_faces) {
+  std::ifstream in(path);
+  if (!in) throw IoError(path + ": cannot open map file");
+  std::vector<SurfacePoint> images;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::istringstream s(line);
+    long long face = 0;
+    std::array<double, 3> b{};
+    std::string extra;
+    if (!(s >> face)) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      throw IoError(path + ":" + std::to_string(line_no) + ": expected 'face b0 b1 b2'");
+    }
+    if (!(s >> b[0] >> b[1] >> b[2]) || (s >> extra)) {
+      throw IoError(path + ":" + std::to_string(line_no) + ": expected 'face b0 b1 b2'");
+    }
+    if (face < 0 || face >= n_target_faces) {
+      throw IoError(path + ":" + std::to_string(line_no) + ": face " + std::to_string(face) +
+                    " is out of range (the target mesh has " + std::to_string(n_target_faces) + " faces)");
+    }
+    images.push_back(SurfacePoint::in_face(FaceId(static_cast<int>(face)), b));
+  }
+  return images;
+}
+
+void write_barycentric_matrix(const std::string& path, const std::vector<SurfacePoint>& images,
+                              const Eigen::MatrixXi& F_target) {
+  OutputFile f(path);
+  for (size_t i = 0; i < images.size(); ++i) {
+    const SurfacePoint& p = images[i];
+    for (int k = 0; k < 3; ++k) {
+      if (p.bary[static_cast<size_t>(k)] != 0.0) {
+        std::fprintf(f.get(), "%zu %d %.17g\n", i, F_target(p.face.idx, k), p.bary[static_cast<size_t>(k)]);
+      }
+    }
+  }
+  f.close();
+}
+
+nlohmann::json map_report(const MapResult& map, const std::string& path_a, const TriangleMesh& a,
+                          const std::string& path_b, const TriangleMesh& b, const Landmarks& landmarks,
+                          const MapOptions& options) {
+  nlohmann::json j;
+  j["input"] = {
+      {"A", {{"file", path_a}, {"vertices", a.V.rows()}, {"faces", a.F.rows()}}},
+      {"B", {{"file", path_b}, {"vertices", b.V.rows()}, {"faces", b.F.rows()}}},
+  };
+  nlohmann::json lm = nlohmann::json::array();
+  for (size_t i = 0; i < landmarks.a.size(); ++i) lm.push_back({landmarks.a[i].idx, landmarks.b[i].idx});
+  j["landmarks"] = lm;
+  j["options"] = {
+      {"p", std::isinf(options.flatten.p) ? nlohmann::json("inf") : nlohmann::json(options.flatten.p)},
+      {"h", options.flatten.h == DistortionCombiner::kNorm ? "eq3" : "eq2"},
+      {"normalize_area", options.flatten.normalize_area},
+      {"relative_tolerance", options.flatten.relative_tolerance},
+      {"max_iterations", options.flatten.max_iterations},
+      {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},
+  };
+  j["cut"] = {
+      {"tree_edges", map.cut.tree},
+      {"boundary_vertices", map.cut.nu.size()},
+      {"disk_A", {{"vertices", map.disk_a.n_vertices()}, {"faces", map.disk_a.n_faces()}}},
+      {"disk_B", {{"vertices", map.disk_b.n_vertices()}, {"faces", map.disk_b.n_faces()}}},
+      {"path_lengths_A", map.cut.a.path_lengths},
+      {"path_lengths_B", map.cut.b.path_lengths},
+  };
+  nlohmann::json it = nlohmann::json::array();
+  for (const auto& i : map.flattening.iterations) {
+    it.push_back({{"energy", i.energy},
+                  {"energy_A", i.energy_m},
+                  {"energy_B", i.energy_n},
+                  {"max_distortion", i.max_distortion},
+                  {"subproblem_objective", i.subproblem_objective},
+                  {"newton_steps", i.newton_steps},
+                  {"seconds", i.seconds}});
+  }
+  j["flatten"] = {
+      {"iterations", it}, {"converged", map.flattening.converged}, {"stop_reason", map.flattening.stop_reason}};
+  j["seconds"] = {{"cut", map.seconds.cut},
+                  {"flatten", map.seconds.flatten},
+                  {"lift", map.seconds.lift},
+                  {"verify", map.seconds.verify},
+                  {"total", map.seconds.total}};
+  j["distortion"] = {
+      {"measure", "per face max(Sigma, 1/sigma), area-weighted, both meshes scaled to the same area"},
+      {"Phi", stats_json(map.distortion_phi)},
+      {"Psi", stats_json(map.distortion_psi)},
+      {"f", stats_json(map.distortion_f)},
+      {"g", stats_json(map.distortion_g)},
+      {"f_g_method",
+       "dense sampling: " + std::to_string(options.distortion_samples_per_edge * options.distortion_samples_per_edge) +
+           " points per face (centroids of its sub-triangles), J = J_target^-1 J_source"},
+  };
+  const MapVerification& v = map.verification;
+  j["verification"] = {{"passed", v.passed},
+                       {"failures", v.failures},
+                       {"min_orientation", v.min_orientation},
+                       {"max_boundary_angle_sum", v.max_boundary_angle_sum},
+                       {"lifting_residual", v.lifting_residual},
+                       {"round_trip_error", v.round_trip_error},
+                       {"landmark_error", v.landmark_error}};
+  return j;
+}
+
+}  // namespace liftmap

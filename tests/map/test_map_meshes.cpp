@@ -1,0 +1,130 @@
+#include "map/map_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <random>
+#include <set>
+
+#include "common/test_meshes.h"
+#include "core/errors.h"
+#include "map/write_map.h"
+
+namespace liftmap {
+namespace {
+
+std::vector<VertexId> random_vertices(int n_vertices, int k, std::mt19937& rng) {
+  std::set<int> chosen;
+  while (static_cast<int>(chosen.size()) < k)
+    chosen.insert(static_cast<int>(rng() % static_cast<unsigned>(n_vertices)));
+  std::vector<VertexId> out;
+  for (int v : chosen) out.emplace_back(v);
+  std::shuffle(out.begin(), out.end(), rng);
+  return out;
+}
+
+Eigen::Vector3d position(const TriangleMesh& m, const SurfacePoint& p) {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * m.V.row(m.F(p.face.idx, k)).transpose();
+  return x;
+}
+
+double sqrt_area(const TriangleMesh& m) {
+  double a = 0;
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    const Eigen::Vector3d p = m.V.row(m.F(f, 0)), q = m.V.row(m.F(f, 1)), r = m.V.row(m.F(f, 2));
+    a += 0.5 * (q - p).cross(r - p).norm();
+  }
+  return std::sqrt(a);
+}
+
+// The end-to-end invariants of the map on a real pair with seeded random landmarks.
+void expect_valid_map(const TriangleMesh& A, const TriangleMesh& B, int k, unsigned seed) {
+  std::mt19937 rng(seed);
+  const auto la = random_vertices(static_cast<int>(A.V.rows()), k, rng);
+  const auto lb = random_vertices(static_cast<int>(B.V.rows()), k, rng);
+  MapOptions options;
+  options.flatten.max_iterations = 3;  // the invariants hold after any number of outer iterations
+  const MapResult map = map_meshes(A.V, A.F, B.V, B.F, la, lb, options);
+  const MapVerification& v = map.verification;
+  EXPECT_TRUE(v.passed) << (v.failures.empty() ? "" : v.failures.front());
+  EXPECT_GT(v.min_orientation, 0.0);
+  EXPECT_LT(v.max_boundary_angle_sum, 2 * M_PI);
+  EXPECT_LT(v.lifting_residual, 1e-9);
+  EXPECT_LT(v.round_trip_error, 1e-9);
+
+  // Landmarks map exactly onto their partners, both ways.
+  for (int i = 0; i < k; ++i) {
+    EXPECT_LT((position(B, map.a_to_b[static_cast<size_t>(la[i].idx)]) - B.V.row(lb[i].idx).transpose()).norm(),
+              1e-12 * sqrt_area(B));
+    EXPECT_LT((position(A, map.b_to_a[static_cast<size_t>(lb[i].idx)]) - A.V.row(la[i].idx).transpose()).norm(),
+              1e-12 * sqrt_area(A));
+  }
+  // No two vertices share an image (injectivity on vertices).
+  std::vector<std::array<double, 3>> images;
+  for (const auto& p : map.a_to_b) {
+    const Eigen::Vector3d x = position(B, p);
+    images.push_back({x.x(), x.y(), x.z()});
+  }
+  std::sort(images.begin(), images.end());
+  EXPECT_EQ(std::adjacent_find(images.begin(), images.end()), images.end());
+
+  // g(f(x)) = x at random points inside faces of A, through the input-mesh evaluator.
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0;
+  for (int i = 0; i < 300; ++i) {
+    const int f = static_cast<int>(rng() % static_cast<unsigned>(A.F.rows()));
+    const double a = u(rng), b = u(rng) * (1 - a);
+    const SurfacePoint x = SurfacePoint::in_face(FaceId(f), {a, b, 1 - a - b});
+    const SurfacePoint y = evaluate_map(map, Side::kA, x);
+    const SurfacePoint back = evaluate_map(map, Side::kB, y);
+    worst = std::max(worst, (position(A, back) - position(A, x)).norm() / sqrt_area(A));
+  }
+  EXPECT_LT(worst, 1e-9);
+  // The distortion of f is finite and at least 1 (max(Sigma, 1/sigma) >= 1).
+  EXPECT_GE(map.distortion_f.mean, 1.0);
+  EXPECT_TRUE(std::isfinite(map.distortion_f.max));
+}
+
+TEST(MapMeshes, SpheresWithRandomLandmarks) {
+  const TriangleMesh sphere = testing::read_demo_mesh("larger_sphere.off");
+  const TriangleMesh ellipsoid = testing::read_demo_mesh("ellipsoid.off");
+  for (int k : {3, 6}) {
+    SCOPED_TRACE("k = " + std::to_string(k));
+    expect_valid_map(sphere, ellipsoid, k, 100 + static_cast<unsigned>(k));
+  }
+}
+
+TEST(MapMeshes, MapFilesRoundTrip) {
+  const TriangleMesh sphere = testing::read_demo_mesh("geosphere.off");
+  const TriangleMesh ellipsoid = testing::read_demo_mesh("ellipsoid.off");
+  std::mt19937 rng(5);
+  const auto la = random_vertices(static_cast<int>(sphere.V.rows()), 4, rng);
+  const auto lb = random_vertices(static_cast<int>(ellipsoid.V.rows()), 4, rng);
+  MapOptions options;
+  options.flatten.max_iterations = 2;
+  const MapResult map = map_meshes(sphere.V, sphere.F, ellipsoid.V, ellipsoid.F, la, lb, options);
+  ASSERT_TRUE(map.verification.passed);
+  const std::string path = (std::filesystem::temp_directory_path() / "liftmap_test_A_to_B.txt").string();
+  write_vertex_map(path, map.a_to_b, "test");
+  const auto back = read_vertex_map(path, static_cast<int>(ellipsoid.F.rows()));
+  ASSERT_EQ(back.size(), map.a_to_b.size());
+  for (size_t i = 0; i < back.size(); ++i) {
+    EXPECT_EQ(back[i].face, map.a_to_b[i].face);
+    EXPECT_EQ(back[i].bary, map.a_to_b[i].bary) << "17 digits must round-trip";
+  }
+  EXPECT_THROW(read_vertex_map(path, 3), IoError);
+  std::filesystem::remove(path);
+}
+
+TEST(MapMeshes, RejectsInvalidInput) {
+  const TriangleMesh cow = testing::read_demo_mesh("cow.off");
+  const TriangleMesh elephant = testing::read_demo_mesh("elephant.off");
+  const std::vector<VertexId> l{VertexId(0), VertexId(1)};
+  EXPECT_THROW(map_meshes(cow.V, cow.F, elephant.V, elephant.F, l, l), InvalidInputError);
+  EXPECT_THROW(map_meshes(cow.V, cow.F, cow.V, cow.F, {VertexId(0)}, {VertexId(0)}), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace liftmap
