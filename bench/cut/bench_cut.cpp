@@ -3,8 +3,8 @@
 //   bench_cut [DATA_DIR] [k]
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <string>
 
@@ -38,9 +38,10 @@ void run(const std::string& dir, const char* a, const char* b, int k) {
     double len_a = 0, len_b = 0;
     for (const double l : r.a.path_lengths) len_a += l;
     for (const double l : r.b.path_lengths) len_b += l;
-    std::printf("%s-%s k=%d %s: %.3f s wall, %.3f s CPU  (%lld + %lld vertices, %zu boundary pairs, tree length %.4g + %.4g)\n", a, b, k,
-                geodesic ? "geodesic paths" : "edge paths   ", s, cpu, static_cast<long long>(ma.V.rows()),
-                static_cast<long long>(mb.V.rows()), r.nu.size(), len_a, len_b);
+    std::printf(
+        "%s-%s k=%d %s: %.3f s wall, %.3f s CPU  (%lld + %lld vertices, %zu boundary pairs, tree length %.4g + %.4g)\n",
+        a, b, k, geodesic ? "geodesic paths" : "edge paths   ", s, cpu, static_cast<long long>(ma.V.rows()),
+        static_cast<long long>(mb.V.rows()), r.nu.size(), len_a, len_b);
   }
 }
 
