@@ -21,6 +21,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MESHES = os.path.join(ROOT, "data", "meshes")
+TIMEOUT = 900  # seconds per liftmap run; a pair that takes longer is reported as such
 
 
 def example_pairs():
@@ -39,7 +40,11 @@ def run_map(liftmap, a, b, landmarks, extra):
     out = tempfile.mkdtemp(prefix="liftmap_bench_")
     cmd = ["/usr/bin/time", "-f", "%M", liftmap, "map", a, b, "-l", landmarks, "-o", out, "--quiet"] + extra
     t0 = time.monotonic()
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        subprocess.run(["rm", "-rf", out])
+        raise RuntimeError(f"timed out after {TIMEOUT} s")
     wall = time.monotonic() - t0
     if p.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} exited {p.returncode}: {p.stderr.strip()}")
@@ -61,10 +66,12 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("build")
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--pairs", nargs="*", help="example pairs to run (default: all of examples/)")
     args = ap.parse_args()
     liftmap = os.path.join(args.build, "app", "liftmap")
     lines = ["# liftmap benchmark results", ""]
-    lines.append(f"Produced by `make bench` (`bench/run.py {args.build} --runs {args.runs}`) on "
+    pairs = " --pairs " + " ".join(args.pairs) if args.pairs else ""
+    lines.append(f"Produced by `bench/run.py {args.build} --runs {args.runs}{pairs}` on "
                  f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; machine: {platform.machine()}, "
                  f"{os.cpu_count()} cores, {platform.platform()}. Times are medians of {args.runs} runs; "
                  "ratios compare runs made side by side in this one invocation.")
@@ -73,8 +80,15 @@ def main():
                  "| outer its | distortion f mean / p95 / max | baseline (Tutte, no optimisation) mean / max |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, a, b, lm in example_pairs():
-        med, rep = median_runs(liftmap, a, b, lm, [], args.runs)
-        base_med, base = median_runs(liftmap, a, b, lm, ["--max-iterations", "0"], 1)
+        if args.pairs and name not in args.pairs:
+            continue
+        try:
+            med, rep = median_runs(liftmap, a, b, lm, [], args.runs)
+            base_med, base = median_runs(liftmap, a, b, lm, ["--max-iterations", "0"], 1)
+        except RuntimeError as e:
+            lines.append(f"| {name} | | | | | | | | | | {e} | |")
+            sys.stderr.write(lines[-1] + "\n")
+            continue
         d = rep["distortion"]["f"]
         bd = base["distortion"]["f"]
         lines.append(

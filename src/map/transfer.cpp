@@ -35,9 +35,9 @@ Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& 
   return out;
 }
 
-Eigen::MatrixXd read_attributes(const std::string& path) {
+Eigen::MatrixXd read_attributes(const std::string& path, std::vector<int>* line_of_row) {
   std::ifstream in(path);
-  if (!in) throw IoError(path + ": cannot open attribute file");
+  if (!in) throw IoError(path + ": cannot open file");
   std::vector<std::vector<double>> rows;
   std::string line;
   int line_no = 0;
@@ -61,8 +61,9 @@ Eigen::MatrixXd read_attributes(const std::string& path) {
                     " columns, but the first row has " + std::to_string(rows.front().size()));
     }
     rows.push_back(std::move(row));
+    if (line_of_row != nullptr) line_of_row->push_back(line_no);
   }
-  if (rows.empty()) throw IoError(path + ": no attribute rows");
+  if (rows.empty()) throw IoError(path + ": no rows of numbers");
   Eigen::MatrixXd X(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
   for (size_t i = 0; i < rows.size(); ++i) {
     for (size_t j = 0; j < rows[i].size(); ++j)

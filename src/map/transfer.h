@@ -18,9 +18,11 @@ namespace liftmap {
 Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X,
                                const std::vector<SurfacePoint>& points);
 
-/// Reads per-vertex attributes: a text file of one row of whitespace-separated numbers per vertex (`#` comments).
-/// \throw IoError naming the file and line for a malformed row or rows of different lengths
-Eigen::MatrixXd read_attributes(const std::string& path);
+/// Reads a table of numbers: one row of whitespace-separated numbers per line, `#` comments, blank lines
+/// ignored (per-vertex attributes, map files).
+/// \param line if not null, receives the file line of every row (for messages)
+/// \throw IoError naming the file and line for a malformed row or rows of different lengths, or no rows
+Eigen::MatrixXd read_attributes(const std::string& path, std::vector<int>* line = nullptr);
 
 /// Writes per-vertex attributes in the format of read_attributes (17 significant digits).
 void write_attributes(const std::string& path, const Eigen::MatrixXd& X);

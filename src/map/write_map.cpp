@@ -1,5 +1,6 @@
 #include "map/write_map.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "core/errors.h"
 #include "io/output_file.h"
 #include "io/write_mesh.h"
+#include "map/transfer.h"
 
 namespace liftmap {
 
@@ -32,30 +34,21 @@ void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& 
 }
 
 std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_faces) {
-  std::ifstream in(path);
-  if (!in) throw IoError(path + ": cannot open map file");
+  std::vector<int> line;
+  const Eigen::MatrixXd rows = read_attributes(path, &line);
+  if (rows.cols() != 4) {
+    throw IoError(path + ":" + std::to_string(line.front()) + ": expected 'face b0 b1 b2', found " +
+                  std::to_string(rows.cols()) + " numbers");
+  }
   std::vector<SurfacePoint> images;
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream s(line);
-    long long face = 0;
-    std::array<double, 3> b{};
-    std::string extra;
-    if (!(s >> face)) {
-      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-      throw IoError(path + ":" + std::to_string(line_no) + ": expected 'face b0 b1 b2'");
+  images.reserve(static_cast<size_t>(rows.rows()));
+  for (Eigen::Index i = 0; i < rows.rows(); ++i) {
+    const double face = rows(i, 0);
+    if (face != std::floor(face) || face < 0 || face >= n_target_faces) {
+      throw IoError(path + ":" + std::to_string(line[static_cast<size_t>(i)]) + ": face " + std::to_string(face) +
+                    " is not a face index of the target mesh (" + std::to_string(n_target_faces) + " faces)");
     }
-    if (!(s >> b[0] >> b[1] >> b[2]) || (s >> extra)) {
-      throw IoError(path + ":" + std::to_string(line_no) + ": expected 'face b0 b1 b2'");
-    }
-    if (face < 0 || face >= n_target_faces) {
-      throw IoError(path + ":" + std::to_string(line_no) + ": face " + std::to_string(face) +
-                    " is out of range (the target mesh has " + std::to_string(n_target_faces) + " faces)");
-    }
-    images.push_back(SurfacePoint::in_face(FaceId(static_cast<int>(face)), b));
+    images.push_back(SurfacePoint::in_face(FaceId(static_cast<int>(face)), {rows(i, 1), rows(i, 2), rows(i, 3)}));
   }
   return images;
 }
