@@ -7,7 +7,7 @@ JOBS       ?= 2
 LIFTMAP    := $(BUILD)/app/liftmap
 SOURCES    := $(shell find src app tests bench -name '*.cpp' -o -name '*.h' 2>/dev/null)
 
-.PHONY: all deps meshes build build-asan test test-release test-asan demo bench lint format clean
+.PHONY: all deps meshes build build-asan test test-slow demo bench lint format clean
 
 all: build
 
@@ -29,12 +29,15 @@ $(BUILD_ASAN)/build.ninja: CMakeLists.txt
 build-asan: deps $(BUILD_ASAN)/build.ninja
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 
-# The whole suite in Release, then again under AddressSanitizer + UndefinedBehaviorSanitizer (tests labelled
-# `slow` run in Release only).
+# The suite in Release, then again under AddressSanitizer + UndefinedBehaviorSanitizer. Tests labelled `slow`
+# (the 300-configuration cut sweep, the CVXOPT differential test) run with `make test-slow`.
 test: meshes build build-asan
-	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -LE slow
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow
+
+test-slow: meshes build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L slow
 
 demo: meshes build
 	./scripts/demo.sh $(LIFTMAP)

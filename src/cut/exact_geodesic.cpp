@@ -20,6 +20,7 @@ std::vector<double> exact_geodesic_distances(const Eigen::MatrixXd& V, const Eig
 
   SurfaceMesh mesh;
   std::vector<VertexIndex> vertex;
+  vertex.reserve(static_cast<size_t>(V.rows()));
   for (int i = 0; i < V.rows(); ++i) vertex.push_back(mesh.add_vertex(Kernel::Point_3(V(i, 0), V(i, 1), V(i, 2))));
   for (int f = 0; f < F.rows(); ++f) {
     const auto face = mesh.add_face(vertex[static_cast<size_t>(F(f, 0))], vertex[static_cast<size_t>(F(f, 1))],
@@ -32,6 +33,7 @@ std::vector<double> exact_geodesic_distances(const Eigen::MatrixXd& V, const Eig
   shortest.add_source_point(vertex[static_cast<size_t>(source)]);
   shortest.build_sequence_tree();
   std::vector<double> out;
+  out.reserve(targets.size());
   for (const int t : targets)
     out.push_back(shortest.shortest_distance_to_source_points(vertex[static_cast<size_t>(t)]).first);
   return out;

@@ -15,7 +15,8 @@ std::vector<double> edge_graph_distances(const Mesh& mesh, const Eigen::MatrixXd
   dist[static_cast<size_t>(source.idx)] = 0;
   queue.emplace(0.0, source.idx);
   while (!queue.empty()) {
-    const auto [d, u] = queue.top();
+    const double d = queue.top().first;
+    const int u = queue.top().second;
     queue.pop();
     if (d > dist[static_cast<size_t>(u)]) continue;
     mesh.for_each_outgoing(VertexId(u), [&](HalfedgeId h) {

@@ -99,7 +99,8 @@ bool left_strip(const RefinedMesh& r, const std::vector<int>& path, const std::f
     if (mesh.is_boundary(Mesh::twin(g))) return false;
     const HalfedgeId g2 = mesh.next(Mesh::twin(g));
     const int c = mesh.head(g2).idx;
-    const Eigen::Vector2d pl = at(lv), pr = at(rv);
+    // Copies, not references: `at` reads `face`, which is overwritten on the next line.
+    const Eigen::Vector2d pl = at(lv), pr = at(rv);  // NOLINT(performance-unnecessary-copy-initialization)
     face = {{{lv, pl}, {rv, pr}, {c, third(lv, pl, rv, pr, c)}}};
     g = g2;
   }

@@ -96,7 +96,8 @@ struct Side {
     dist[static_cast<size_t>(c)] = 0;
     queue.emplace(0.0, c);
     while (!queue.empty()) {
-      const auto [d, u] = queue.top();
+      const double d = queue.top().first;
+      const int u = queue.top().second;
       queue.pop();
       if (d > dist[static_cast<size_t>(u)]) continue;
       mesh.for_each_outgoing(VertexId(u), [&](HalfedgeId h) {

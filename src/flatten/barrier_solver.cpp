@@ -143,9 +143,9 @@ void barrier_derivatives(const Vec7& q, double cs, double sn, bool ghost, double
     const Vec7 dr = dn + unit_c;
     const Vec7 ds = -dm / (m * m);
     const Mat7 d2s = 2.0 * dm * dm.transpose() / (m * m * m);
-    const Vec7 dR = (r * dr + sv * ds) / R;
-    const Mat7 d2R = (dr * dr.transpose() + r * d2n + ds * ds.transpose() + sv * d2s) / R - dR * dR.transpose() / R;
-    add_log_barrier(e - R, unit_e - dR, -d2R, grad, hess);
+    const Vec7 d_r = (r * dr + sv * ds) / R;
+    const Mat7 d2_r = (dr * dr.transpose() + r * d2n + ds * ds.transpose() + sv * d2s) / R - d_r * d_r.transpose() / R;
+    add_log_barrier(e - R, unit_e - d_r, -d2_r, grad, hess);
   }
   if (s.p_inf) hess(kE, kE) = 1;  // e is unused
 }
@@ -261,14 +261,14 @@ double merit_difference(const Setup& s, const State& z0, const State& z1, double
   if (s.settings.p_inf) {
     d += t * ((z1.T[0] - z0.T[0]) + (z1.T[1] - z0.T[1]));
   } else {
-    std::array<double, 2> dS{0, 0};
+    std::array<double, 2> d_s{0, 0};
     for (int j = 0; j < s.n_faces; ++j) {
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      if (!fs.ghost()) dS[static_cast<size_t>(fs.mesh)] += fs.w * (z1.e(j) - z0.e(j)) * (z1.e(j) + z0.e(j));
+      if (!fs.ghost()) d_s[static_cast<size_t>(fs.mesh)] += fs.w * (z1.e(j) - z0.e(j)) * (z1.e(j) + z0.e(j));
     }
     const auto S0 = mesh_sums(s, z0);
     const auto S1 = mesh_sums(s, z1);
-    for (size_t m = 0; m < 2; ++m) d += t * dS[m] / (std::sqrt(S0[m]) + std::sqrt(S1[m]));
+    for (size_t m = 0; m < 2; ++m) d += t * d_s[m] / (std::sqrt(S0[m]) + std::sqrt(S1[m]));
   }
   return d;
 }
@@ -282,8 +282,8 @@ struct FaceSystem {
   Eigen::Vector2d gy;    // gradient in (c, e)
   Eigen::Vector2d hyT;   // coupling (c, e) -> T
   Vec6 hxT;              // coupling corners -> T
-  double hTT = 0;
-  double gT = 0;
+  double h_tt = 0;
+  double g_t = 0;
 };
 
 /// Sparse lower-triangular pattern of the Schur system and where each face's entries go.
@@ -407,7 +407,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   {
     double gf_gphi = 0, gf_gf = 0;
     const auto S = mesh_sums(s, z);
-    std::array<double, 2> barrier_T{0, 0};
+    std::array<double, 2> barrier_t{0, 0};
     for (int j = 0; j < s.n_faces; ++j) {
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
       if (fs.ghost()) continue;
@@ -415,7 +415,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       Mat7 H;
       barrier_derivatives(local_vars(s, z, j), fs.cs, fs.sn, false, 0.0, st, g, H);
       if (st.p_inf) {
-        barrier_T[static_cast<size_t>(fs.mesh)] += g(kT);
+        barrier_t[static_cast<size_t>(fs.mesh)] += g(kT);
       } else {
         const double df = fs.w * z.e(j) / std::sqrt(S[static_cast<size_t>(fs.mesh)]);
         gf_gphi += df * g(kE);
@@ -423,7 +423,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       }
     }
     if (st.p_inf) {
-      gf_gphi = barrier_T[0] + barrier_T[1];
+      gf_gphi = barrier_t[0] + barrier_t[1];
       gf_gf = 2;
     }
     if (gf_gphi < 0) t = -gf_gphi / gf_gf;
@@ -501,15 +501,15 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         fsys.gy = g.segment<2>(kC);
         fsys.hyT = H.block<2, 1>(kC, kT);
         fsys.hxT = fs.S.transpose() * H.block<4, 1>(kA, kT);
-        fsys.hTT = H(kT, kT);
-        fsys.gT = g(kT);
+        fsys.h_tt = H(kT, kT);
+        fsys.g_t = g(kT);
       }
       // Assemble the Schur system and the gradient.
       double* values = pattern.A.valuePtr();
       std::fill(values, values + pattern.A.nonZeros(), 0.0);
       Eigen::VectorXd gx = Eigen::VectorXd::Zero(nv);
       Eigen::VectorXd gy(2 * nf);
-      std::array<double, 2> gT{t, t}, hTT{0, 0};
+      std::array<double, 2> g_t{t, t}, h_tt{0, 0};
       for (int j = 0; j < nf; ++j) {
         const FaceSystem& fsys = sys[static_cast<size_t>(j)];
         const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
@@ -524,8 +524,8 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         }
         gy.segment<2>(2 * j) = fsys.gy;
         if (fs.ghost()) continue;
-        gT[static_cast<size_t>(fs.mesh)] += fsys.gT;
-        hTT[static_cast<size_t>(fs.mesh)] += fsys.hTT;
+        g_t[static_cast<size_t>(fs.mesh)] += fsys.g_t;
+        h_tt[static_cast<size_t>(fs.mesh)] += fsys.h_tt;
       }
       if (!cholesky.factorize(pattern.A)) {
         // Rounding in the eliminated blocks of nearly active constraints can make the Schur complement
@@ -571,20 +571,20 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       Eigen::MatrixXd Dx, Dy;
       apply_pinv(Rx, Ry, Dx, Dy);
       Eigen::VectorXd dx = Dx.col(0), dy = Dy.col(0);
-      std::array<double, 2> dT{0, 0};
+      std::array<double, 2> d_t{0, 0};
       if (st.p_inf) {
-        // Bordered system [[P, Q], [Q^T, hTT]]: Schur complement on the two epigraph variables.
+        // Bordered system [[P, Q], [Q^T, h_tt]]: Schur complement on the two epigraph variables.
         Eigen::Matrix2d M;
         Eigen::Vector2d rhs;
         for (int a = 0; a < 2; ++a) {
-          rhs(a) = -gT[static_cast<size_t>(a)] - Rx.col(1 + a).dot(Dx.col(0)) - Ry.col(1 + a).dot(Dy.col(0));
+          rhs(a) = -g_t[static_cast<size_t>(a)] - Rx.col(1 + a).dot(Dx.col(0)) - Ry.col(1 + a).dot(Dy.col(0));
           for (int b = 0; b < 2; ++b) {
-            M(a, b) = (a == b ? hTT[static_cast<size_t>(a)] : 0.0) - Rx.col(1 + a).dot(Dx.col(1 + b)) -
+            M(a, b) = (a == b ? h_tt[static_cast<size_t>(a)] : 0.0) - Rx.col(1 + a).dot(Dx.col(1 + b)) -
                       Ry.col(1 + a).dot(Dy.col(1 + b));
           }
         }
         const Eigen::Vector2d sol = M.ldlt().solve(rhs);
-        dT = {sol(0), sol(1)};
+        d_t = {sol(0), sol(1)};
         dx -= Dx.middleCols(1, 2) * sol;
         dy -= Dy.middleCols(1, 2) * sol;
       } else {
@@ -600,7 +600,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         dy += Dy.middleCols(1, 2) * coef;
       }
       double lambda2 = -(gx.dot(dx) + gy.dot(dy));
-      if (st.p_inf) lambda2 -= gT[0] * dT[0] + gT[1] * dT[1];
+      if (st.p_inf) lambda2 -= g_t[0] * d_t[0] + g_t[1] * d_t[1];
       if (!std::isfinite(lambda2)) throw PipelineError("convex subproblem: the Newton step is not finite");
       ++result.newton_steps;
       if (lambda2 / 2 <= options.newton_tolerance) break;
@@ -613,8 +613,8 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
           zn.c(j) += step * dy(2 * j);
           zn.e(j) += step * dy(2 * j + 1);
         }
-        zn.T[0] += step * dT[0];
-        zn.T[1] += step * dT[1];
+        zn.T[0] += step * d_t[0];
+        zn.T[1] += step * d_t[1];
         return zn;
       };
       double step = 1;
