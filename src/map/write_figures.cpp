@@ -71,7 +71,7 @@ void write_map_render(const std::string& path, const MapResult& map, const Trian
 
 void write_distortion_histogram(const std::string& path, const MapResult& map) {
   HistogramOptions options;
-  options.title = "distortion of f: max(S, 1/s) per sample, area-weighted";
+  options.title = "distortion of f (area-weighted samples)";
   render_histogram_png(map.f_samples, map.f_weights, path, options);
 }
 
