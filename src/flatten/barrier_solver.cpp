@@ -236,6 +236,96 @@ bool feasible(const Setup& s, const State& z) {
   return ok == 1;
 }
 
+/// Bounds of a face's auxiliaries at q: c must lie in (lo, hi), and then E_j = h(n + c, 1/(l - c)).
+struct AuxBounds {
+  double lo = 0, hi = 0, n = 0, l = 0;
+  [[nodiscard]] bool open() const { return hi > lo; }
+  [[nodiscard]] double energy(double c, bool h_max) const {
+    return h_max ? std::max(n + c, 1.0 / (l - c)) : std::hypot(n + c, 1.0 / (l - c));
+  }
+};
+
+AuxBounds aux_bounds(const Vec7& q, const FaceSetup& fs) {
+  AuxBounds b;
+  b.lo = std::hypot(q(2), q(3));
+  b.n = std::hypot(q(0), q(1));
+  b.l = q(0) * fs.cs + q(1) * fs.sn;
+  b.hi = fs.ghost() ? std::min(b.l, fs.bound - b.n) : b.l;
+  return b;
+}
+
+/// The state z + step (dx, dy, d_t), with the auxiliaries of every face whose linear step leaves their cones
+/// put back inside. The auxiliaries only express (10a) in conic form; the positions alone decide whether a
+/// point is feasible (every sigma_tilde_j > 0, ghost bounds). Without this repair, the linearly extrapolated
+/// c_j, e_j leave their cones long before the positions do, and the line search crawls at steps of 1/128.
+/// A repaired c_j moves half the way from its relative place between its bounds at z towards the bound it
+/// crossed; a repaired epigraph variable keeps half its slack (fraction to the boundary).
+/// \param repair false: the plain linear step, infeasible as soon as any variable leaves its cone
+/// \return false if the point is infeasible.
+bool step_state(const Setup& s, const State& z, const Eigen::VectorXd& dx, const Eigen::VectorXd& dy,
+                const std::array<double, 2>& d_t, double step, bool repair, State& zn) {
+  const int nf = s.n_faces;
+  const bool h_max = s.settings.h_max, p_inf = s.settings.p_inf;
+  zn.pos = z.pos;
+  zn.pos.tail(dx.size()) += step * dx;
+  zn.c = z.c + step * dy(Eigen::seq(0, Eigen::last, 2));
+  zn.e = z.e + step * dy(Eigen::seq(1, Eigen::last, 2));
+  zn.T = {z.T[0] + step * d_t[0], z.T[1] + step * d_t[1]};
+  // p = inf: the largest E_j at zn and at z of each mesh, to keep T's slack over the maximum.
+  std::vector<double> e_new(p_inf ? static_cast<size_t>(nf) : 0, 0.0), e_old(e_new.size(), 0.0);
+  int ok = 1;
+#pragma omp parallel for schedule(static) reduction(min : ok) if (nf > kParallelFaces)
+  for (int j = 0; j < nf; ++j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    const Vec7 q1 = local_vars(s, zn, j);
+    const AuxBounds b1 = aux_bounds(q1, fs);
+    if (!b1.open()) {
+      ok = 0;
+      continue;
+    }
+    const Vec7 q0 = local_vars(s, z, j);
+    const AuxBounds b0 = aux_bounds(q0, fs);
+    double c = q1(kC);
+    if (!repair && !(c > b1.lo && c < b1.hi)) {
+      ok = 0;
+      continue;
+    }
+    if (!(c > b1.lo && c < b1.hi)) {
+      // Half the way from its old relative place towards the bound it crossed (fraction to the boundary).
+      const double r0 = (q0(kC) - b0.lo) / (b0.hi - b0.lo);
+      const double r = c <= b1.lo ? 0.5 * r0 : 1 - 0.5 * (1 - r0);
+      c = b1.lo + r * (b1.hi - b1.lo);
+      zn.c(j) = c;
+    }
+    if (fs.ghost()) continue;
+    const double h1 = b1.energy(c, h_max), h0 = b0.energy(q0(kC), h_max);
+    if (p_inf) {
+      e_new[static_cast<size_t>(j)] = h1;
+      e_old[static_cast<size_t>(j)] = h0;
+    } else if (!repair && !(zn.e(j) > h1)) {
+      ok = 0;
+    } else if (!(zn.e(j) > h1)) {
+      zn.e(j) = h1 + 0.5 * (z.e(j) - h0);
+    }
+  }
+  if (ok == 0) return false;
+  if (p_inf) {
+    std::array<double, 2> max_new{0, 0}, max_old{0, 0};
+    for (int j = 0; j < nf; ++j) {
+      const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+      if (fs.ghost()) continue;
+      const auto m = static_cast<size_t>(fs.mesh);
+      max_new[m] = std::max(max_new[m], e_new[static_cast<size_t>(j)]);
+      max_old[m] = std::max(max_old[m], e_old[static_cast<size_t>(j)]);
+    }
+    for (size_t m = 0; m < 2; ++m) {
+      if (!repair && !(zn.T[m] > max_new[m])) return false;
+      if (!(zn.T[m] > max_new[m])) zn.T[m] = max_new[m] + 0.5 * (z.T[m] - max_old[m]);
+    }
+  }
+  return feasible(s, zn);
+}
+
 /// Objective part of the merit, f0(z) = sum over meshes of sqrt(sum_j w_j e_j^2) or T_m.
 std::array<double, 2> mesh_sums(const Setup& s, const State& z) {
   std::array<double, 2> S{0, 0};
@@ -464,6 +554,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   };
 
   bool done = false;
+  double last_shift = 0;  // relative diagonal shift of the last factorisation that needed one
   while (!done) {
     // Centring: Newton's method on t f0 + barrier.
     for (;;) {
@@ -487,15 +578,34 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         }
         const Eigen::Matrix2d Pyy = H.block<2, 2>(kC, kC);
         fsys.Pinv = Pyy.inverse();
+        fsys.Pinv = 0.5 * (fsys.Pinv + fsys.Pinv.transpose());
         const Eigen::Matrix<double, 4, 2> Hay = H.block<4, 2>(kA, kC);
-        Eigen::Matrix4d Haa = H.block<4, 4>(kA, kA) - Hay * fsys.Pinv * Hay.transpose();
+        // Schur complement Haa - Hay Pyy^-1 Hay^T with the subtracted term formed as W^T W, W = L^-1 Hay^T
+        // (Pyy = L L^T): symmetric and positive semidefinite by construction. Pyy's entries span up to 20
+        // orders of magnitude on nearly active faces, and the plain product with its inverse is then neither.
+        Eigen::Matrix4d Haa = H.block<4, 4>(kA, kA);
+        const Eigen::LLT<Eigen::Matrix2d> pyy_llt(Pyy);
+        if (pyy_llt.info() == Eigen::Success) {
+          const Eigen::Matrix<double, 2, 4> W = pyy_llt.matrixL().solve(Hay.transpose());
+          Haa -= W.transpose() * W;
+        } else {
+          Haa -= Hay * fsys.Pinv * Hay.transpose();
+        }
+        Haa = 0.5 * (Haa + Haa.transpose());
         // The exact Schur complement is positive semidefinite; rounding in the elimination of nearly active
         // constraints (huge, nearly cancelling terms) can leave negative eigenvalues: clamp them.
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(0.5 * (Haa + Haa.transpose()));
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Haa);
         if (eig.eigenvalues()(0) < 0) {
           Haa = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
         }
         fsys.K = fs.S.transpose() * Haa * fs.S;
+        if (eig.eigenvalues()(0) < 1e-8 * eig.eigenvalues()(3)) {
+          // Ill-conditioned block: the product's rounding (relative to its largest entries) can again leave
+          // negative eigenvalues of a few percent of the smaller ones, enough to make the sum indefinite.
+          Eigen::SelfAdjointEigenSolver<Mat6> eig6(0.5 * (fsys.K + fsys.K.transpose()));
+          fsys.K =
+              eig6.eigenvectors() * eig6.eigenvalues().cwiseMax(0.0).asDiagonal() * eig6.eigenvectors().transpose();
+        }
         fsys.B = fs.S.transpose() * Hay;
         fsys.gx = fs.S.transpose() * g.head<4>();
         fsys.gy = g.segment<2>(kC);
@@ -527,17 +637,21 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         g_t[static_cast<size_t>(fs.mesh)] += fsys.g_t;
         h_tt[static_cast<size_t>(fs.mesh)] += fsys.h_tt;
       }
-      if (!cholesky.factorize(pattern.A)) {
+      if (cholesky.factorize(pattern.A)) {
+        last_shift = 0;
+      } else {
         // Rounding in the eliminated blocks of nearly active constraints can make the Schur complement
         // numerically indefinite late in the solve: shift the diagonal until it factorises. Any positive
         // definite matrix still gives a descent direction, and the line search keeps the iterate feasible.
         // The shift is relative to each diagonal entry: the curvatures span many orders of magnitude.
         const Eigen::VectorXd diag = pattern.A.diagonal();
-        double shift = 1e-14;
+        // Start near the shift that worked last time: each attempt is a full factorisation.
+        double shift = std::max(1e-14, 1e-2 * last_shift);
         bool ok = false;
-        for (int attempt = 0; attempt < 12 && !ok; ++attempt, shift *= 10) {
+        for (; shift < 1e3 && !ok; shift *= 100) {
           for (int v = 0; v < nv; ++v) pattern.A.coeffRef(v, v) = diag(v) * (1 + shift);
           ok = cholesky.factorize(pattern.A);
+          if (ok) last_shift = shift;
         }
         if (!ok) {
           // Numerical limit of double precision reached: the iterate is strictly feasible; stop here and let
@@ -605,32 +719,31 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       ++result.newton_steps;
       if (lambda2 / 2 <= options.newton_tolerance) break;
 
-      // Feasible backtracking line search, then Armijo on the merit.
-      auto moved = [&](double step) {
-        State zn = z;
-        for (int v = 0; v < nv; ++v) zn.pos(v + 2) += step * dx(v);
-        for (int j = 0; j < nf; ++j) {
-          zn.c(j) += step * dy(2 * j);
-          zn.e(j) += step * dy(2 * j + 1);
+      // Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds.
+      // First along the plain Newton direction; if that stops short, also with the auxiliaries repaired (see
+      // step_state), where only the positions limit the step, and keep the point of lower merit.
+      auto line_search = [&](bool repair, State& out, double& merit) {
+        double step = 1;
+        for (int halvings = 0; halvings < 60; ++halvings, step *= 0.5) {
+          if (!step_state(s, z, dx, dy, d_t, step, repair, out)) continue;
+          merit = merit_difference(s, z, out, t);
+          if (merit <= -0.25 * step * lambda2) return step;
         }
-        zn.T[0] += step * d_t[0];
-        zn.T[1] += step * d_t[1];
-        return zn;
+        return 0.0;
       };
-      double step = 1;
-      State zn = moved(step);
-      int halvings = 0;
-      while (!feasible(s, zn) && halvings < 60) {
-        step *= 0.5;
-        ++halvings;
-        zn = moved(step);
+      State zn;
+      double merit = 0;
+      double step = line_search(false, zn, merit);
+      if (step < 1.0 / 64) {  // crawling: the auxiliaries, not the positions, are what block the step
+        State zr;
+        double merit_r = 0;
+        const double step_r = line_search(true, zr, merit_r);
+        if (step_r > 0 && (step == 0 || merit_r < merit)) {
+          zn = std::move(zr);
+          step = step_r;
+        }
       }
-      while (merit_difference(s, z, zn, t) > -0.25 * step * lambda2 && halvings < 60) {
-        step *= 0.5;
-        ++halvings;
-        zn = moved(step);
-      }
-      if (halvings >= 60) break;  // no progress possible at this precision: the centre is reached
+      if (step == 0) break;  // no progress possible at this precision: the centre is reached
       z = std::move(zn);
     }
     ++result.centrings;

@@ -1,5 +1,7 @@
 #include "flatten/sparse_cholesky.h"
 
+#include <omp.h>
+
 #include <Eigen/CholmodSupport>
 
 #include "core/errors.h"
@@ -28,7 +30,12 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!impl_->analyzed) analyze(A);
+  // CHOLMOD's supernodal kernels call BLAS on many small blocks; a threaded BLAS (OpenBLAS built on OpenMP)
+  // spends more on synchronisation than it gains there (4x slower on 2 cores): factorise single-threaded.
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
   impl_->llt.factorize(A);
+  omp_set_num_threads(threads);
   return impl_->llt.info() == Eigen::Success;
 }
 
