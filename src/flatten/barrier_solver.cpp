@@ -557,6 +557,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   double last_shift = 0;  // relative diagonal shift of the last factorisation that needed one
   while (!done) {
     // Centring: Newton's method on t f0 + barrier.
+    bool stalled = false;
     for (;;) {
       if (result.newton_steps >= options.max_newton_steps) {
         done = true;
@@ -743,15 +744,20 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
           step = step_r;
         }
       }
-      if (step == 0) break;  // no progress possible at this precision: the centre is reached
+      if (step == 0) {  // no progress possible at this precision, short of the Newton tolerance
+        stalled = true;
+        break;
+      }
       z = std::move(zn);
     }
     ++result.centrings;
+    if (stalled) ++result.stalled_centrings;
     const double gap = nu / t;
     result.gap_bound = gap;
     if (done) break;
     if (gap <= options.relative_gap * f0(z)) {
-      result.converged = true;
+      // nu / t bounds the gap only at a centred point: a last centring that stalled certifies nothing.
+      result.converged = !stalled;
       break;
     }
     t *= options.barrier_growth;

@@ -57,7 +57,11 @@ struct BarrierResult {
   double gap_bound = 0;  ///< nu/t at the end: objective minus optimum, up to the centring tolerance
   int newton_steps = 0;
   int centrings = 0;
-  bool converged = false;  ///< false if max_newton_steps ran out first
+  /// Centrings that ended because no step along the Newton direction decreased the merit, before the Newton
+  /// decrement reached its tolerance (precision limit); their iterates are feasible but not centred.
+  int stalled_centrings = 0;
+  bool converged = false;  ///< the gap bound was reached at a centred point; false if max_newton_steps ran out
+                           ///< first or the last centring stalled
 };
 
 /// Objective (10a) at X with the auxiliary variables eliminated; +infinity if some sigma_tilde_j <= 0.

@@ -238,6 +238,8 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     JointFlattenIteration it;
     it.subproblem_objective = br.objective;
     it.newton_steps = br.newton_steps;
+    it.subproblem_converged = br.converged;
+    it.stalled_centrings = br.stalled_centrings;
     record(br.X, it);
     it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double previous = res.iterations.back().energy;

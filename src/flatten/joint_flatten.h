@@ -40,7 +40,9 @@ struct JointFlattenIteration {
   double max_distortion = 0;        ///< max over both meshes of max(Sigma, 1/sigma) (§4.2)
   double subproblem_objective = 0;  ///< optimum of (10) found in this iteration (0 for the start)
   int newton_steps = 0;
-  double seconds = 0;  ///< wall time of this outer iteration (rotations + solve + checks)
+  bool subproblem_converged = false;  ///< the solver certified its gap bound (BarrierResult::converged)
+  int stalled_centrings = 0;          ///< BarrierResult::stalled_centrings
+  double seconds = 0;                 ///< wall time of this outer iteration (rotations + solve + checks)
 };
 
 /// Result of the joint flattening.

@@ -238,7 +238,11 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
     const auto& it = r.flattening.iterations[i];
     std::ostringstream s;
     s << (i == 0 ? "start" : "iteration " + std::to_string(i)) << ": energy " << it.energy << ", max distortion "
-      << it.max_distortion << " (" << it.seconds << " s)";
+      << it.max_distortion;
+    if (i > 0) {
+      s << " (" << it.seconds << " s, " << it.newton_steps << " Newton steps"
+        << (it.subproblem_converged ? "" : ", subproblem gap not certified") << ")";
+    }
     progress("flatten", s.str());
   }
   if (!r.flattening.stop_reason.empty()) progress("flatten", "stopped early: " + r.flattening.stop_reason);

@@ -102,6 +102,8 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                   {"max_distortion", i.max_distortion},
                   {"subproblem_objective", i.subproblem_objective},
                   {"newton_steps", i.newton_steps},
+                  {"subproblem_converged", i.subproblem_converged},
+                  {"stalled_centrings", i.stalled_centrings},
                   {"seconds", i.seconds}});
   }
   j["flatten"] = {
