@@ -229,10 +229,13 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     // (only possible if the solver stopped early, far from the central path's end) would break monotonicity.
     // Every iterate is strictly feasible, so the previous one is a valid (liftable) result: stop there rather
     // than fail the whole map.
-    if (!br.converged && br.objective > subproblem_objective(sp, X)) {
-      res.stop_reason = "the convex subproblem of outer iteration " + std::to_string(iter + 1) +
-                        " did not converge in " + std::to_string(options.solver.max_newton_steps) +
-                        " Newton steps; kept the flattenings of iteration " + std::to_string(iter);
+    const double start_objective = subproblem_objective(sp, X);
+    if (br.objective > start_objective) {
+      res.stop_reason = "the convex subproblem of outer iteration " + std::to_string(iter + 1) + " ended at " +
+                        std::to_string(br.objective) + ", above its start's " + std::to_string(start_objective) + " (" +
+                        std::to_string(br.newton_steps) + " Newton steps, " +
+                        (br.converged ? "certified" : "not certified") + "); kept the flattenings of iteration " +
+                        std::to_string(iter);
       break;
     }
     JointFlattenIteration it;
@@ -243,6 +246,19 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     record(br.X, it);
     it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double previous = res.iterations.back().energy;
+    if (it.energy > previous) {
+      // Only an inexact subproblem solution can do this (the start is feasible with objective E(X), and E of
+      // the optimum is at most its objective): keep the previous iterate, so that the energy never rises.
+      res.stop_reason = "outer iteration " + std::to_string(iter + 1) + " raised the energy from " +
+                        std::to_string(previous) + " to " + std::to_string(it.energy) + " (subproblem " +
+                        (br.converged ? "certified" : "not certified") + "); kept the flattenings of iteration " +
+                        std::to_string(iter);
+      if (options.keep_iterates) {
+        res.Phi_iterates.pop_back();
+        res.Psi_iterates.pop_back();
+      }
+      break;
+    }
     res.iterations.push_back(it);
     X = br.X;
     if (previous - it.energy < options.relative_tolerance * previous) {
