@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "flatten/distortion.h"
@@ -39,6 +40,17 @@ struct ConvexSubproblem {
 /// Bound of the ghost faces' largest singular value, relative to its value at the start of the subproblem.
 inline constexpr double kGhostStretch = 10;
 
+/// One Newton step of the barrier method, for profiling (BarrierOptions::on_step).
+struct BarrierStep {
+  int centring = 0;       ///< index of the centring (barrier parameter value) the step belongs to
+  double t = 0;           ///< barrier parameter
+  double lambda2 = 0;     ///< squared Newton decrement before the step
+  double step = 0;        ///< step length taken (0: none, the centring ends)
+  bool repaired = false;  ///< the step came from the line search with repaired auxiliaries
+  double objective = 0;   ///< objective f0 of the auxiliaries after the step
+  double seconds = 0;     ///< wall time of the step (derivatives, factorisation, solve, line search)
+};
+
 /// Settings of the barrier method.
 struct BarrierOptions {
   /// Stop when the duality-gap bound nu/t is below this times the objective. 1e-8 is reached reliably on a
@@ -46,7 +58,12 @@ struct BarrierOptions {
   double relative_gap = 1e-8;
   double barrier_growth = 20;      ///< t <- barrier_growth * t after each centring
   double newton_tolerance = 1e-7;  ///< centring stops when the Newton decrement lambda^2/2 is below this
-  int max_newton_steps = 400;      ///< in total, over all centrings
+  /// When the line search can no longer make progress (the merit t f0 + barrier has reached the limit of double
+  /// precision, seen at t ~ 1e8 on whole-mesh disks), a centring still counts as centred if lambda^2/2 is below
+  /// this: with lambda < 1 the gap is still bounded, by (nu + lambda sqrt(nu) / (1 - lambda)) / t.
+  double precision_tolerance = 1e-2;
+  int max_newton_steps = 400;                                 ///< in total, over all centrings
+  std::function<void(const BarrierStep&)> on_step = nullptr;  ///< called after every Newton step if set
 };
 
 /// What the barrier method found.
@@ -54,7 +71,8 @@ struct BarrierResult {
   Eigen::MatrixXd X;     ///< #slots by 2 minimiser; row `fixed_slot` kept at its start position (the
                          ///< objective is invariant under translation)
   double objective = 0;  ///< objective (10a) at X, auxiliary variables eliminated
-  double gap_bound = 0;  ///< nu/t at the end: objective minus optimum, up to the centring tolerance
+  double gap_bound = 0;  ///< (nu + lambda sqrt(nu) / (1 - lambda)) / t at the end (lambda: the last Newton
+                         ///< decrement): a bound of objective minus optimum
   int newton_steps = 0;
   int centrings = 0;
   /// Centrings that ended because no step along the Newton direction decreased the merit, before the Newton

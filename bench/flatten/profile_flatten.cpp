@@ -1,0 +1,80 @@
+// Profile of step 2 on a real pair (not a test): cuts the pair along its example landmarks, then runs the joint
+// flattening and prints, per outer iteration, every centring of the barrier method: its barrier parameter, Newton
+// steps, damped steps, repaired steps, and time. This is where bench/RESULTS.md's "where the time goes" comes from.
+// Usage: profile_flatten A.off B.off landmarks.txt [max_outer_iterations]
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "cut/cut_meshes.h"
+#include "flatten/joint_flatten.h"
+#include "io/landmarks.h"
+#include "io/read_mesh.h"
+
+int main(int argc, char** argv) {
+  using namespace liftmap;
+  if (argc < 4) {
+    std::fprintf(stderr, "usage: %s A B landmarks.txt [max_outer_iterations]\n", argv[0]);
+    return 2;
+  }
+  const TriangleMesh A = read_mesh(argv[1]);
+  const TriangleMesh B = read_mesh(argv[2]);
+  const Landmarks L = read_landmarks(argv[3], static_cast<int>(A.V.rows()), static_cast<int>(B.V.rows()));
+  auto t0 = std::chrono::steady_clock::now();
+  const CutResult cut = cut_meshes(A.V, A.F, B.V, B.F, L.a, L.b);
+  const double cut_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const Mesh disk_a(cut.a.F_cut, static_cast<int>(cut.a.cut_to_refined.size()));
+  const Mesh disk_b(cut.b.F_cut, static_cast<int>(cut.b.cut_to_refined.size()));
+  FlatteningDisk m{&disk_a, cut.a.V(cut.a.cut_to_refined, Eigen::all), {}};
+  FlatteningDisk n{&disk_b, cut.b.V(cut.b.cut_to_refined, Eigen::all), {}};
+  for (const auto& pair : cut.nu) {
+    m.boundary.emplace_back(pair[0]);
+    n.boundary.emplace_back(pair[1]);
+  }
+  std::printf("cut %.2f s: disks of %d + %d faces, %zu boundary pairs\n", cut_s, disk_a.n_faces(), disk_b.n_faces(),
+              cut.nu.size());
+
+  JointFlattenOptions options;
+  if (argc > 4) options.max_iterations = std::atoi(argv[4]);
+  int outer = 1;
+  struct Centring {
+    int index = -1, steps = 0, damped = 0, repaired = 0;
+    double t = 0, seconds = 0, min_step = 1, objective = 0;
+  } c;
+  auto flush = [&] {
+    if (c.index < 0) return;
+    std::printf("  centring %2d  t %9.3g  steps %3d  damped(<1) %3d  repaired %3d  min step %8.2g  %6.2f s  f0 %.6g\n",
+                c.index, c.t, c.steps, c.damped, c.repaired, c.min_step, c.seconds, c.objective);
+  };
+  options.solver.on_step = [&](const BarrierStep& s) {
+    if (s.centring != c.index) {
+      flush();
+      if (s.centring < c.index) std::printf("outer iteration %d\n", ++outer);
+      c = Centring{.index = s.centring, .t = s.t};
+    }
+    if (std::getenv("PROFILE_STEPS")) {
+      std::printf("    step: lambda2 %10.4g  step %8.3g%s  f0 %.6g\n", s.lambda2, s.step, s.repaired ? " repaired" : "",
+                  s.objective);
+    }
+    ++c.steps;
+    c.seconds += s.seconds;
+    c.objective = s.objective;
+    if (s.step > 0 && s.step < 1) ++c.damped;
+    if (s.repaired) ++c.repaired;
+    if (s.step > 0) c.min_step = std::min(c.min_step, s.step);
+  };
+  std::printf("outer iteration 1\n");
+  t0 = std::chrono::steady_clock::now();
+  const JointFlattenResult r = joint_flatten(m, n, options);
+  flush();
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (size_t i = 0; i < r.iterations.size(); ++i) {
+    const auto& it = r.iterations[i];
+    std::printf("iterate %zu: energy %.6f  max distortion %.4g  Newton steps %d  %.2f s\n", i, it.energy,
+                it.max_distortion, it.newton_steps, it.seconds);
+  }
+  std::printf("flatten total %.2f s %s\n", total, r.stop_reason.c_str());
+  return 0;
+}
