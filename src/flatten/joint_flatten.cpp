@@ -219,6 +219,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     JointFlattenIteration it;
     record(X, it);
     res.iterations.push_back(it);
+    if (options.on_iteration) options.on_iteration(0, it);
   }
   SparseCholesky cholesky;
   for (int iter = 0; iter < options.max_iterations; ++iter) {
@@ -260,6 +261,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       break;
     }
     res.iterations.push_back(it);
+    if (options.on_iteration) options.on_iteration(res.iterations.size() - 1, it);
     X = br.X;
     if (previous - it.energy < options.relative_tolerance * previous) {
       res.converged = true;

@@ -2,6 +2,7 @@
 /// Joint flattening of two disks with a common boundary: Algorithm 2 of the paper (§3.3).
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct FlatteningDisk {
                                    ///< boundary[i] of one disk corresponds to boundary[i] of the other (nu)
 };
 
+struct JointFlattenIteration;
+
 /// Settings of Algorithm 2; defaults are the paper's.
 struct JointFlattenOptions {
   double p = 2;                                      ///< 2 or std::numeric_limits<double>::infinity()
@@ -31,6 +34,9 @@ struct JointFlattenOptions {
   /// The convex subproblem solver. A certified relative gap of 1e-5 is 100 times finer than the outer tolerance,
   /// and saves the last one or two centrings, which on whole-mesh disks run at the limits of double precision.
   BarrierOptions solver{.relative_gap = 1e-5};
+  /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
+  /// they happen (progress reporting); empty: not called.
+  std::function<void(size_t, const JointFlattenIteration&)> on_iteration = nullptr;
 };
 
 /// Statistics of one iterate (index 0: the Tutte start).

@@ -232,10 +232,9 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
     n.boundary.emplace_back(pair[1]);
   }
   progress("flatten", "Tutte start and convex subproblems (10)");
-  r.flattening = joint_flatten(m, n, options.flatten);
-  r.seconds.flatten = seconds_since(t0);
-  for (size_t i = 0; i < r.flattening.iterations.size(); ++i) {
-    const auto& it = r.flattening.iterations[i];
+  JointFlattenOptions flatten_options = options.flatten;
+  flatten_options.on_iteration = [&](size_t i, const JointFlattenIteration& it) {
+    if (options.flatten.on_iteration) options.flatten.on_iteration(i, it);
     std::ostringstream s;
     s << (i == 0 ? "start" : "iteration " + std::to_string(i)) << ": energy " << it.energy << ", max distortion "
       << it.max_distortion;
@@ -244,7 +243,9 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
         << (it.subproblem_converged ? "" : ", subproblem gap not certified") << ")";
     }
     progress("flatten", s.str());
-  }
+  };
+  r.flattening = joint_flatten(m, n, flatten_options);
+  r.seconds.flatten = seconds_since(t0);
   if (!r.flattening.stop_reason.empty()) progress("flatten", "stopped early: " + r.flattening.stop_reason);
   r.scale_a = r.flattening.scale_m;
   r.scale_b = r.flattening.scale_n;
