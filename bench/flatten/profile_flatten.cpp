@@ -1,7 +1,7 @@
 // Profile of step 2 on a real pair (not a test): cuts the pair along its example landmarks, then runs the joint
 // flattening and prints, per outer iteration, every centring of the barrier method: its barrier parameter, Newton
 // steps, damped steps, repaired steps, and time. This is where bench/RESULTS.md's "where the time goes" comes from.
-// Usage: profile_flatten A.off B.off landmarks.txt [max_outer_iterations]
+// Usage: profile_flatten A.off B.off landmarks.txt [max_outer_iterations [barrier_growth [relative_gap]]]
 
 #include <chrono>
 #include <cstdio>
@@ -16,7 +16,8 @@
 int main(int argc, char** argv) {
   using namespace liftmap;
   if (argc < 4) {
-    std::fprintf(stderr, "usage: %s A B landmarks.txt [max_outer_iterations]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s A B landmarks.txt [max_outer_iterations [barrier_growth [relative_gap]]]\n",
+                 argv[0]);
     return 2;
   }
   const TriangleMesh A = read_mesh(argv[1]);
@@ -38,15 +39,20 @@ int main(int argc, char** argv) {
 
   JointFlattenOptions options;
   if (argc > 4) options.max_iterations = std::atoi(argv[4]);
+  if (argc > 5) options.solver.barrier_growth = std::atof(argv[5]);
+  if (argc > 6) options.solver.relative_gap = std::atof(argv[6]);
   int outer = 1;
   struct Centring {
     int index = -1, steps = 0, damped = 0, repaired = 0;
-    double t = 0, seconds = 0, min_step = 1, objective = 0;
+    double t = 0, seconds = 0, min_step = 1, objective = 0, derivatives = 0, factorization = 0, line_search = 0;
   } c;
   auto flush = [&] {
     if (c.index < 0) return;
-    std::printf("  centring %2d  t %9.3g  steps %3d  damped(<1) %3d  repaired %3d  min step %8.2g  %6.2f s  f0 %.6g\n",
-                c.index, c.t, c.steps, c.damped, c.repaired, c.min_step, c.seconds, c.objective);
+    std::printf(
+        "  centring %2d  t %9.3g  steps %3d  damped(<1) %3d  repaired %3d  min step %8.2g  %6.2f s (derivatives %.2f, "
+        "factorisation %.2f, line search %.2f)  f0 %.6g\n",
+        c.index, c.t, c.steps, c.damped, c.repaired, c.min_step, c.seconds, c.derivatives, c.factorization,
+        c.line_search, c.objective);
   };
   options.solver.on_step = [&](const BarrierStep& s) {
     if (s.centring != c.index) {
@@ -60,6 +66,9 @@ int main(int argc, char** argv) {
     }
     ++c.steps;
     c.seconds += s.seconds;
+    c.derivatives += s.seconds_derivatives;
+    c.factorization += s.seconds_factorization;
+    c.line_search += s.seconds_line_search;
     c.objective = s.objective;
     if (s.step > 0 && s.step < 1) ++c.damped;
     if (s.repaired) ++c.repaired;

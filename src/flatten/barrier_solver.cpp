@@ -675,12 +675,16 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       }
       const auto step_start = std::chrono::steady_clock::now();
       BarrierStep trace{.centring = result.centrings, .t = t};
+      auto search_start = step_start;  // set when the line search starts
       auto report = [&](double step, bool repaired) {
         if (!options.on_step) return;
         trace.step = step;
         trace.repaired = repaired;
         trace.objective = f0(z);
-        trace.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
+        const auto now = std::chrono::steady_clock::now();
+        trace.seconds = std::chrono::duration<double>(now - step_start).count();
+        trace.seconds_line_search =
+            search_start == step_start ? 0.0 : std::chrono::duration<double>(now - search_start).count();
         options.on_step(trace);
       };
       const auto S = mesh_sums(s, z);
@@ -774,6 +778,8 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
           h_tt[m] = 2 * (z.T[m] * z.T[m] + S[m]) / (cone[m] * cone[m]);
         }
       }
+      const auto factor_start = std::chrono::steady_clock::now();
+      trace.seconds_derivatives = std::chrono::duration<double>(factor_start - step_start).count();
       if (cholesky.factorize(pattern.A)) {
         last_shift = 0;
       } else {
@@ -819,6 +825,8 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         }
       }
       Eigen::MatrixXd Dx, Dy;
+      trace.seconds_factorization =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - factor_start).count();
       apply_pinv(Rx, Ry, Dx, Dy);
       Eigen::VectorXd dx = Dx.col(0), dy = Dy.col(0);
       std::array<double, 2> d_t{0, 0};
@@ -886,6 +894,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       // Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds.
       // First along the plain Newton direction; if that stops short, also with the auxiliaries repaired (see
       // step_state), where only the positions limit the step, and keep the point of lower merit.
+      search_start = std::chrono::steady_clock::now();
       auto line_search = [&](bool repair, State& out, double& merit) {
         double step = 1;
         for (int halvings = 0; halvings < 60; ++halvings, step *= 0.5) {
@@ -913,9 +922,11 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
           repaired = true;
         }
       }
-      if (step == 0 || (step < 1e-8 && lambda2 / 2 <= options.precision_tolerance)) {
-        // No progress possible at this precision. Close enough to the central point (Newton decrement below
-        // the precision tolerance), the centring has done its job; otherwise it stalled.
+      if (step == 0 || (step < 1 && lambda2 / 2 <= options.precision_tolerance)) {
+        // No progress possible at this precision: so close to the central point (Newton decrement below the
+        // precision tolerance, where a full Newton step is accepted in exact arithmetic) that only rounding
+        // shortens the step, the centring has done its job; further steps crawl at 1e-7 (seen on camel-cow).
+        // Farther away, a failed line search means the centring stalled.
         stalled = lambda2 / 2 > options.precision_tolerance;
         if (step > 0) z = std::move(zn);
         report(step, false);

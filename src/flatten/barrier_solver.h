@@ -42,13 +42,16 @@ inline constexpr double kGhostStretch = 10;
 
 /// One Newton step of the barrier method, for profiling (BarrierOptions::on_step).
 struct BarrierStep {
-  int centring = 0;       ///< index of the centring (barrier parameter value) the step belongs to
-  double t = 0;           ///< barrier parameter
-  double lambda2 = 0;     ///< squared Newton decrement before the step
-  double step = 0;        ///< step length taken (0: none, the centring ends)
-  bool repaired = false;  ///< the step came from the line search with repaired auxiliaries
-  double objective = 0;   ///< objective f0 of the auxiliaries after the step
-  double seconds = 0;     ///< wall time of the step (derivatives, factorisation, solve, line search)
+  int centring = 0;                  ///< index of the centring (barrier parameter value) the step belongs to
+  double t = 0;                      ///< barrier parameter
+  double lambda2 = 0;                ///< squared Newton decrement before the step
+  double step = 0;                   ///< step length taken (0: none, the centring ends)
+  bool repaired = false;             ///< the step came from the line search with repaired auxiliaries
+  double objective = 0;              ///< objective f0 of the auxiliaries after the step
+  double seconds = 0;                ///< wall time of the step (derivatives, factorisation, solve, line search)
+  double seconds_derivatives = 0;    ///< of which per-face derivatives and assembly
+  double seconds_factorization = 0;  ///< of which the sparse factorisation (with diagonal shifts if needed)
+  double seconds_line_search = 0;    ///< of which the line search (0 if the step ended the centring)
 };
 
 /// Settings of the barrier method.
@@ -58,9 +61,10 @@ struct BarrierOptions {
   double relative_gap = 1e-8;
   double barrier_growth = 20;      ///< t <- barrier_growth * t after each centring
   double newton_tolerance = 1e-7;  ///< centring stops when the Newton decrement lambda^2/2 is below this
-  /// When the line search can no longer make progress (the merit t f0 + barrier has reached the limit of double
-  /// precision, seen at t ~ 1e8 on whole-mesh disks), a centring still counts as centred if lambda^2/2 is below
-  /// this: with lambda < 1 the gap is still bounded, by (nu + lambda sqrt(nu) / (1 - lambda)) / t.
+  /// A centring ends, centred, when lambda^2/2 is below this and the line search cannot take the full Newton
+  /// step (which it would in exact arithmetic: the merit t f0 + barrier has reached the limit of double
+  /// precision, seen at t ~ 1e8 on whole-mesh disks). With lambda < 1 the gap is still bounded, by
+  /// (nu + lambda sqrt(nu) / (1 - lambda)) / t.
   double precision_tolerance = 1e-2;
   int max_newton_steps = 400;                                 ///< in total, over all centrings
   std::function<void(const BarrierStep&)> on_step = nullptr;  ///< called after every Newton step if set
