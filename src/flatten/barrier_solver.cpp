@@ -599,7 +599,6 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   double t = nu / (st.p_inf ? f0(z) : std::sqrt(S_start[0]) + std::sqrt(S_start[1]));
   {
     double gf_gphi = 0, gf_gf = 0;
-    const auto S = mesh_sums(s, z);
     std::array<double, 2> barrier_t{0, 0};
     for (int j = 0; j < s.n_faces; ++j) {
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
@@ -610,7 +609,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       if (st.p_inf) {
         barrier_t[static_cast<size_t>(fs.mesh)] += g(kT);
       } else {
-        const double df = fs.w * z.e(j) / std::sqrt(S[static_cast<size_t>(fs.mesh)]);
+        const double df = fs.w * z.e(j) / std::sqrt(S_start[static_cast<size_t>(fs.mesh)]);
         gf_gphi += df * g(kE);
         gf_gf += df * df;
       }
@@ -892,8 +891,10 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       }
 
       // Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds.
-      // First along the plain Newton direction; if that stops short, also with the auxiliaries repaired (see
-      // step_state), where only the positions limit the step, and keep the point of lower merit.
+      // p = 2: the positions' step with the auxiliaries re-centred at each trial point (step_state_2), which lets
+      // the positions take steps 5-10 times longer than with the linearly extrapolated auxiliaries.
+      // p = inf: first along the plain Newton direction; if that stops short, also with the auxiliaries repaired
+      // (step_state_inf), where only the positions limit the step, and keep the point of lower merit.
       search_start = std::chrono::steady_clock::now();
       auto line_search = [&](bool repair, State& out, double& merit) {
         double step = 1;
@@ -908,11 +909,9 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       };
       State zn;
       double merit = 0;
-      // p = 2: the positions' step, with the auxiliaries re-centred at each trial point (step_state), which lets
-      // the positions take steps 5-10 times longer than with the linearly extrapolated auxiliaries.
-      double step = st.p_inf ? line_search(false, zn, merit) : 0.0;
-      bool repaired = false;
-      if (step < 1.0 / 64) {  // crawling: the auxiliaries, not the positions, are what block the step
+      bool repaired = !st.p_inf;
+      double step = line_search(repaired, zn, merit);
+      if (st.p_inf && step < 1.0 / 64) {  // crawling: the auxiliaries, not the positions, block the step
         State zr;
         double merit_r = 0;
         const double step_r = line_search(true, zr, merit_r);
