@@ -71,7 +71,7 @@ bool barrier_args(const Vec7& q, double cs, double sn, bool ghost, double bound,
   // T >= e and e >= E_j on the maximal faces and ruin the conditioning of the elimination).
   const double c = q(kC), e = s.p_inf ? q(kT) : q(kE);
   const double g1 = c * c - q(2) * q(2) - q(3) * q(3);
-  const double n = std::hypot(q(0), q(1));
+  const double n = std::sqrt(q(0) * q(0) + q(1) * q(1));
   const double m = q(0) * cs + q(1) * sn - c;
   if (!(c > 0) || !(g1 > 0) || !(m > 0)) return false;
   out.n = 0;
@@ -90,7 +90,7 @@ bool barrier_args(const Vec7& q, double cs, double sn, bool ghost, double bound,
     out.g[out.n++] = g2;
     out.g[out.n++] = g3;
   } else {
-    const double g4 = e - std::hypot(n + c, 1.0 / m);
+    const double g4 = e - std::sqrt((n + c) * (n + c) + 1 / (m * m));
     if (!(g4 > 0)) return false;
     out.g[out.n++] = g4;
   }
@@ -109,7 +109,7 @@ void barrier_derivatives(const Vec7& q, double cs, double sn, bool ghost, double
   hess.setZero();
   const int ke = s.p_inf ? kT : kE;
   const double al = q(0), be = q(1), c = q(kC), e = q(ke);
-  const double n = std::hypot(al, be);
+  const double n = std::sqrt(al * al + be * be);
   const double m = al * cs + be * sn - c;
   Vec7 dn = Vec7::Zero();
   dn(0) = al / n;
@@ -149,7 +149,7 @@ void barrier_derivatives(const Vec7& q, double cs, double sn, bool ghost, double
   } else {
     // g4 = e - R, R = |(r, s)|, r = n + c, s = 1/m.
     const double r = n + c, sv = 1.0 / m;
-    const double R = std::hypot(r, sv);
+    const double R = std::sqrt(r * r + sv * sv);
     const Vec7 dr = dn + unit_c;
     const Vec7 ds = -dm / (m * m);
     const Mat7 d2s = 2.0 * dm * dm.transpose() / (m * m * m);
@@ -270,30 +270,89 @@ struct AuxBounds {
   double lo = 0, hi = 0, n = 0, l = 0;
   [[nodiscard]] bool open() const { return hi > lo; }
   [[nodiscard]] double energy(double c, bool h_max) const {
-    return h_max ? std::max(n + c, 1.0 / (l - c)) : std::hypot(n + c, 1.0 / (l - c));
+    const double s = 1.0 / (l - c);
+    return h_max ? std::max(n + c, s) : std::sqrt((n + c) * (n + c) + s * s);
   }
 };
 
 AuxBounds aux_bounds(const Vec7& q, const FaceSetup& fs) {
   AuxBounds b;
-  b.lo = std::hypot(q(2), q(3));
-  b.n = std::hypot(q(0), q(1));
+  b.lo = std::sqrt(q(2) * q(2) + q(3) * q(3));
+  b.n = std::sqrt(q(0) * q(0) + q(1) * q(1));
   b.l = q(0) * fs.cs + q(1) * fs.sn;
   b.hi = fs.ghost() ? std::min(b.l, fs.bound - b.n) : b.l;
   return b;
 }
 
-/// Local objective of a face's auxiliaries at fixed positions (p = 2): its barrier plus its share of the objective
-/// cones' barrier, linearised in S_m: (t / 2 T_m) w_j e_j^2. +infinity outside the domain.
-double aux_objective(const Vec7& q, const FaceSetup& fs, const Settings& st, double coef) {
-  BarrierArgs a;
-  if (!barrier_args(q, fs.cs, fs.sn, fs.ghost(), fs.bound, st, a)) return kInf;
-  double v = fs.ghost() ? 0.0 : 0.5 * coef * fs.w * q(kE) * q(kE);
-  for (int k = 0; k < a.n; ++k) v -= std::log(a.g[static_cast<size_t>(k)]);
-  return v;
-}
+/// p = 2: a face's auxiliary problem at fixed positions, in its two variables (c, e): the face's barrier plus its
+/// share of the objective cones' barrier, linearised in S_m: (t / 2 T_m) w_j e_j^2. The same terms as
+/// barrier_args and barrier_derivatives, restricted to (c, e): centre_auxiliaries runs on every face at every
+/// line-search trial, where the full 7-variable derivatives took most of the line search's time.
+struct AuxProblem {
+  double lo2 = 0;    // gamma^2 + delta^2
+  double n = 0;      // |(alpha, beta)|
+  double l = 0;      // alpha cos + beta sin
+  double bound = 0;  // ghost faces: upper bound of Sigma
+  double quad = 0;   // coef w_j: curvature of the linearised objective term in e (0 on ghost faces)
+  bool ghost = false;
+  bool h_max = false;
 
-/// p = 2: moves a face's auxiliaries (c_j, e_j) to the minimiser of aux_objective at its fixed positions, by damped
+  /// +infinity outside the domain.
+  [[nodiscard]] double value(double c, double e) const {
+    const double g1 = c * c - lo2, m = l - c;
+    if (!(c > 0) || !(g1 > 0) || !(m > 0)) return kInf;
+    if (ghost) {
+      const double g6 = bound - n - c;
+      return g6 > 0 ? -std::log(g1) - std::log(m) - std::log(g6) : kInf;
+    }
+    double v = 0.5 * quad * e * e - std::log(g1);
+    if (h_max) {
+      const double g2 = e - c - n, g3 = e * m - 1;
+      if (!(g2 > 0) || !(g3 > 0)) return kInf;
+      return v - std::log(g2) - std::log(g3);
+    }
+    const double g4 = e - std::sqrt((n + c) * (n + c) + 1 / (m * m));
+    return g4 > 0 ? v - std::log(g4) : kInf;
+  }
+
+  /// Gradient and Hessian in (c, e) at a point of the domain.
+  void derivatives(double c, double e, Eigen::Vector2d& g, Eigen::Matrix2d& H) const {
+    const double g1 = c * c - lo2, m = l - c;
+    double gc = -2 * c / g1, ge = 0, hcc = 4 * c * c / (g1 * g1) - 2 / g1, hce = 0, hee = 0;
+    if (ghost) {  // m = l - c and g6 = bound - n - c; e is unused: a unit curvature keeps the block invertible
+      const double g6 = bound - n - c;
+      gc += 1 / m + 1 / g6;
+      hcc += 1 / (m * m) + 1 / (g6 * g6);
+      hee = 1;
+    } else if (h_max) {  // g2 = e - c - n, g3 = e m - 1
+      const double g2 = e - c - n, g3 = e * m - 1;
+      gc += 1 / g2 + e / g3;
+      ge += -1 / g2 - m / g3;
+      hcc += 1 / (g2 * g2) + e * e / (g3 * g3);
+      hce += -1 / (g2 * g2) - e * m / (g3 * g3) + 1 / g3;
+      hee += 1 / (g2 * g2) + m * m / (g3 * g3);
+    } else {  // g4 = e - R, R = |(n + c, 1/m)|
+      const double r = n + c, sv = 1 / m;
+      const double R = std::sqrt(r * r + sv * sv);
+      const double dR = (r + sv / (m * m)) / R;
+      const double d2R = (1 + 1 / (m * m * m * m) + 2 * sv / (m * m * m)) / R - dR * dR / R;
+      const double g4 = e - R;
+      gc += dR / g4;
+      ge += -1 / g4;
+      hcc += dR * dR / (g4 * g4) + d2R / g4;
+      hce += -dR / (g4 * g4);
+      hee += 1 / (g4 * g4);
+    }
+    if (!ghost) {
+      ge += quad * e;
+      hee += quad;
+    }
+    g << gc, ge;
+    H << hcc, hce, hce, hee;
+  }
+};
+
+/// p = 2: moves a face's auxiliaries (c_j, e_j) to the minimiser of its AuxProblem at its fixed positions, by damped
 /// Newton steps from a feasible start (q's own values if feasible, else a point well inside the cones).
 /// Because the merit is concave in S_m, this never raises the merit (it lowers an upper bound that touches it).
 /// Auxiliaries that sit at their optimum for the positions cannot be squeezed against their cones; without this,
@@ -304,39 +363,40 @@ double aux_objective(const Vec7& q, const FaceSetup& fs, const Settings& st, dou
 bool centre_auxiliaries(const FaceSetup& fs, const Settings& st, double coef, Vec7& q) {
   const AuxBounds b = aux_bounds(q, fs);
   if (!b.open()) return false;
-  double value = aux_objective(q, fs, st, coef);
+  AuxProblem p;
+  p.lo2 = q(2) * q(2) + q(3) * q(3);
+  p.n = b.n;
+  p.l = b.l;
+  p.bound = fs.bound;
+  p.ghost = fs.ghost();
+  p.h_max = st.h_max;
+  p.quad = fs.ghost() ? 0.0 : coef * fs.w;
+  double c = q(kC), e = q(kE);
+  double value = p.value(c, e);
   if (!std::isfinite(value)) {
-    q(kC) = b.lo + 0.5 * (b.hi - b.lo);
-    q(kE) = fs.ghost() ? 0.0 : 2 * b.energy(q(kC), st.h_max) + 1;
-    value = aux_objective(q, fs, st, coef);
+    c = b.lo + 0.5 * (b.hi - b.lo);
+    e = fs.ghost() ? 0.0 : 2 * b.energy(c, st.h_max) + 1;
+    value = p.value(c, e);
     if (!std::isfinite(value)) return false;
   }
   for (int it = 0; it < 50; ++it) {
-    Vec7 g;
-    Mat7 H;
-    barrier_derivatives(q, fs.cs, fs.sn, fs.ghost(), fs.bound, st, g, H);
-    Eigen::Vector2d gy(g(kC), g(kE));
-    Eigen::Matrix2d Hy = H.block<2, 2>(kC, kC);
-    if (!fs.ghost()) {
-      gy(1) += coef * fs.w * q(kE);
-      Hy(1, 1) += coef * fs.w;
-    } else {
-      gy(1) = 0;  // e is unused on ghost faces
-    }
-    const Eigen::LLT<Eigen::Matrix2d> llt(Hy);
+    Eigen::Vector2d g;
+    Eigen::Matrix2d H;
+    p.derivatives(c, e, g, H);
+    if (fs.ghost()) g(1) = 0;  // e is unused on ghost faces
+    const Eigen::LLT<Eigen::Matrix2d> llt(H);
     if (llt.info() != Eigen::Success) break;
-    const Eigen::Vector2d d = llt.solve(-gy);
-    const double dec = -gy.dot(d);
+    const Eigen::Vector2d d = llt.solve(-g);
+    const double dec = -g.dot(d);
     if (!(dec > 1e-14)) break;
     double step = 1;
     bool moved = false;
     for (int h = 0; h < 60; ++h, step *= 0.5) {
-      Vec7 qn = q;
-      qn(kC) += step * d(0);
-      qn(kE) += step * d(1);
-      const double vn = aux_objective(qn, fs, st, coef);
+      const double cn = c + step * d(0), en = e + step * d(1);
+      const double vn = p.value(cn, en);
       if (vn <= value - 0.25 * step * dec) {
-        q = qn;
+        c = cn;
+        e = en;
         value = vn;
         moved = true;
         break;
@@ -344,6 +404,8 @@ bool centre_auxiliaries(const FaceSetup& fs, const Settings& st, double coef, Ve
     }
     if (!moved || dec < 1e-10) break;
   }
+  q(kC) = c;
+  q(kE) = e;
   return true;
 }
 
@@ -728,12 +790,15 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         Haa = 0.5 * (Haa + Haa.transpose());
         // The exact Schur complement is positive semidefinite; rounding in the elimination of nearly active
         // constraints (huge, nearly cancelling terms) can leave negative eigenvalues: clamp them.
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Haa);
-        if (eig.eigenvalues()(0) < 0) {
+        // Eigenvalues first; the eigenvectors, twice the work, only for the blocks that need the clamp.
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Haa, Eigen::EigenvaluesOnly);
+        const Eigen::Vector4d lambda = eig.eigenvalues();
+        if (lambda(0) < 0) {
+          eig.compute(Haa);
           Haa = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
         }
         fsys.K = fs.S.transpose() * Haa * fs.S;
-        if (eig.eigenvalues()(0) < 1e-8 * eig.eigenvalues()(3)) {
+        if (lambda(0) < 1e-8 * lambda(3)) {
           // Ill-conditioned block: the product's rounding (relative to its largest entries) can again leave
           // negative eigenvalues of a few percent of the smaller ones, enough to make the sum indefinite.
           Eigen::SelfAdjointEigenSolver<Mat6> eig6(0.5 * (fsys.K + fsys.K.transpose()));
