@@ -729,6 +729,11 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
     // Centring: Newton's method on t f0 + barrier.
     bool stalled = false;
     double end_lambda2 = 0;  // Newton decrement where the centring ended
+    // Only the last centring, the one whose nu / t can meet the gap (f0 only decreases during a centring), is
+    // centred to newton_tolerance: the others end, after one more step, once lambda^2 / 2 is below
+    // centring_tolerance, because the next barrier parameter starts with Newton decrements of ~1e7 anyway.
+    const bool last_centring = nu / t <= options.relative_gap * f0(z);
+    bool roughly_centred = false;
     for (;;) {
       if (result.newton_steps >= options.max_newton_steps) {
         done = true;
@@ -954,6 +959,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         report(0, false);
         break;
       }
+      roughly_centred = !last_centring && lambda2 / 2 <= options.centring_tolerance;
 
       // Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds.
       // p = 2: the positions' step with the auxiliaries re-centred at each trial point (step_state_2), which lets
@@ -991,7 +997,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         // precision tolerance, where a full Newton step is accepted in exact arithmetic) that only rounding
         // shortens the step, the centring has done its job; further steps crawl at 1e-7 (seen on camel-cow).
         // Farther away, a failed line search means the centring stalled.
-        stalled = lambda2 / 2 > options.precision_tolerance;
+        stalled = !roughly_centred && lambda2 / 2 > options.precision_tolerance;
         if (step > 0) z = std::move(zn);
         report(step, false);
         break;
@@ -1000,6 +1006,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       // p = 2: re-centre once more with the accepted point's own T_m (the trial points used the previous ones).
       if (!st.p_inf) centre_all_auxiliaries(s, t, z.T, z);
       report(step, repaired);
+      if (roughly_centred) break;
     }
     ++result.centrings;
     if (stalled) ++result.stalled_centrings;

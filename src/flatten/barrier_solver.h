@@ -59,13 +59,19 @@ struct BarrierOptions {
   /// Stop when the duality-gap bound nu/t is below this times the objective. 1e-8 is reached reliably on a
   /// few thousand faces; beyond, the Newton systems at t ~ 1e11 approach double-precision limits.
   double relative_gap = 1e-8;
-  double barrier_growth = 20;      ///< t <- barrier_growth * t after each centring
-  double newton_tolerance = 1e-7;  ///< centring stops when the Newton decrement lambda^2/2 is below this
+  double barrier_growth = 20;  ///< t <- barrier_growth * t after each centring
+  /// The last centring (the one that can certify the gap) stops when the Newton decrement lambda^2/2 is below this.
+  double newton_tolerance = 1e-7;
+  /// Earlier centrings stop after the step from a point where lambda^2/2 is below this (lambda <= 1/2, the
+  /// long-step method's proximity to the central path): polishing them to newton_tolerance cost 2-4 Newton
+  /// steps each, and the next barrier parameter starts with decrements of ~1e7 whatever the polish.
+  double centring_tolerance = 0.125;
   /// A centring ends, centred, when lambda^2/2 is below this and the line search cannot take the full Newton
   /// step (which it would in exact arithmetic: the merit t f0 + barrier has reached the limit of double
   /// precision, seen at t ~ 1e8 on whole-mesh disks). With lambda < 1 the gap is still bounded, by
-  /// (nu + lambda sqrt(nu) / (1 - lambda)) / t.
-  double precision_tolerance = 1e-2;
+  /// (nu + lambda sqrt(nu) / (1 - lambda)) / t. At 1e-2, camel-cow's last centring crawled 8 steps at lengths
+  /// of 1e-10 with lambda^2/2 = 0.013.
+  double precision_tolerance = 0.125;
   int max_newton_steps = 400;                                 ///< in total, over all centrings
   std::function<void(const BarrierStep&)> on_step = nullptr;  ///< called after every Newton step if set
 };
