@@ -20,8 +20,9 @@ SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
   cm.print = 0;
   // Coarser supernodes than CHOLMOD's defaults (nrelax 4/16/48, zrelax 0.8/0.1/0.05): each supernode is a few BLAS
   // calls, and on these 2D-mesh systems the defaults make many tiny ones whose call overhead dominates. Measured
-  // per factorisation (bench/flatten/profile_flatten, same machine, one run after the other): camel-cow's 46k
-  // unknowns 0.110 s -> 0.068 s, fandisk-bunny's 0.278 s -> 0.186 s. Four times coarser was the best of 1-8x.
+  // per factorisation (bench/flatten/profile_flatten, same machine, one run after the other, serialised as in
+  // factorize): camel-cow's 46k unknowns 0.091 s -> 0.048 s, fandisk-bunny's 0.215 s -> 0.122 s. Four times
+  // coarser was the best of 1-8x.
   cm.nrelax[0] = 16;
   cm.nrelax[1] = 64;
   cm.nrelax[2] = 192;
@@ -41,11 +42,18 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!impl_->analyzed) analyze(A);
-  // CHOLMOD's supernodal kernels call BLAS on many small blocks; a threaded BLAS (OpenBLAS built on OpenMP)
-  // spends more on synchronisation than it gains there (4x slower on 2 cores): factorise single-threaded.
+  // Factorise single-threaded. CHOLMOD's supernodal kernels call BLAS on many small blocks, and a threaded BLAS
+  // (OpenBLAS built on OpenMP, which sizes its work split by omp_get_max_threads) spends more on
+  // synchronisation than it gains there (4x slower on 2 cores). CHOLMOD itself also opens an OpenMP region per
+  // supernode with a fixed num_threads(4) clause, which omp_set_num_threads does not override: on camel-cow
+  // ~5900 thread wake-ups per factorisation. No active parallel levels serialises those. Both are needed:
+  // with the levels alone, OpenBLAS splits its work for 2 threads, gets a team of 1 and spins forever.
   const int threads = omp_get_max_threads();
+  const int levels = omp_get_max_active_levels();
   omp_set_num_threads(1);
+  omp_set_max_active_levels(0);
   impl_->llt.factorize(A);
+  omp_set_max_active_levels(levels);
   omp_set_num_threads(threads);
   return impl_->llt.info() == Eigen::Success;
 }
