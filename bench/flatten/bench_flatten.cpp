@@ -1,9 +1,10 @@
 // Benchmark of the joint flattening's convex subproblem against a general-purpose conic solver (not a test): for
-// each requested size, the first subproblem of a camel-cow patch pair of about that many faces per mesh is solved
-// by our barrier method (median of three runs) and exported for cvxopt_time.py, which times CVXOPT on the same
-// instance. The end-to-end flattening of whole pairs is timed by bench/run.py through `liftmap map`, and
-// profile_flatten gives its per-centring profile.
-// Usage: bench_flatten OUTPUT_DIR [FACES_PER_MESH...]   (default 2000; writes OUTPUT_DIR/first_subproblem_N.json)
+// each requested size n, the first subproblem of a camel patch of n faces and a smooth non-isometric deformation
+// of it (same connectivity, so both meshes have n faces; camel-cow patch pairs with equal boundary counts grow the
+// cow side to the whole cow) is solved by our barrier method (median of three runs) and exported for
+// cvxopt_time.py, which times CVXOPT on the same instance. The end-to-end flattening of whole pairs is timed by
+// bench/run.py through `liftmap map`, and profile_flatten gives its per-centring profile. Usage: bench_flatten
+// OUTPUT_DIR [FACES_PER_MESH...]   (default 2000; writes OUTPUT_DIR/first_subproblem_N.json)
 
 #include <algorithm>
 #include <chrono>
@@ -28,7 +29,8 @@ int main(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) sizes.push_back(std::stoi(argv[i]));
   if (sizes.empty()) sizes.push_back(2000);
   for (const int n : sizes) {
-    const auto [a, b] = testing::patch_pair("camel.off", "cow.off", n, 0, 500);
+    const testing::TestDisk a = testing::mesh_patch("camel.off", 0, n);
+    const testing::TestDisk b = testing::deformed_copy(a);
     const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), {});
     std::vector<double> seconds;
     BarrierResult r;
