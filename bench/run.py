@@ -195,6 +195,11 @@ def fmt(x, digits=3):
     return f"{x:.{digits}g}"
 
 
+def dist_text(d):
+    """mean / median / p95 / max of a distortion record."""
+    return " / ".join(f"{d[k]:.3f}" if d[k] < 1000 else fmt(d[k]) for k in ("mean", "median", "p95", "max"))
+
+
 def fit_slope(xs, ys):
     """Least-squares slope of log y against log x, or None with fewer than two positive points."""
     pts = [(math.log(x), math.log(y)) for x, y in zip(xs, ys) if x > 0 and y is not None and y > 0]
@@ -336,8 +341,8 @@ class Bench:
             self.log(f"{res['name']}: a full run should take about {estimate:.0f} s: running it")
             try:
                 full = run_map(self.liftmap, a, b, lm, [], self.budget.left())
-                res["note"] = (f"The capped run ({cap} outer iterations, {last['wall']:.1f} s) left room for a "
-                               f"full run in the pair's budget; these are the full run's figures.")
+                res["note"] = (f"The capped run ({cap} outer iteration{'s' if cap != 1 else ''}, {last['wall']:.1f} s) "
+                               "left room for a full run in the pair's budget; these are the full run's figures.")
                 res["runs"], res["cap"] = [full], None
             except (TimedOut, RuntimeError) as e:
                 res["note"] = f"A full run was attempted after the capped one and did not finish: {e}."
@@ -350,7 +355,7 @@ class Bench:
         name = res["name"]
         base = res["base"]
         bd = base["report"]["distortion"]["f"] if base else None
-        base_text = (f"{bd['mean']:.3f} / {bd['median']:.3f} / {bd['p95']:.3f} / {fmt(bd['max'])} "
+        base_text = (f"{dist_text(bd)} "
                      f"({fmt(base['report']['seconds']['total'])})") if bd else "-"
         if not res["runs"]:
             return f"| {name} | | | {res['error']} | | | | | | | | | {base_text} |"
@@ -373,7 +378,7 @@ class Bench:
                 f"({rep['cut']['disk_A']['faces']} / {rep['cut']['disk_B']['faces']}) | {len(rep['landmarks'])} "
                 f"| {run_desc} | {fmt(med('cut'))} | {flatten} | {fmt(med('lift'))} | {fmt(med('verify'))} "
                 f"| {fmt(med('total'))} | {max(r['peak_mb'] for r in runs):.0f} | {fmt(per_it)} "
-                f"| {d['mean']:.3f} / {d['median']:.3f} / {d['p95']:.3f} / {fmt(d['max'])} | {base_text} |")
+                f"| {dist_text(d)} | {base_text} |")
 
     def pair_details(self, res):
         if not res["runs"]:
@@ -459,14 +464,13 @@ class Bench:
                                                   "left" if predicted else "no time per iteration from section 1"))
             shutil.rmtree(os.path.dirname(cones_file), ignore_errors=True)
             o = row["orb"]
-            orb_text = (f"{o['mean']:.3f} / {o['median']:.3f} / {o['p95']:.3f} / {fmt(o['max'])}"
+            orb_text = (f"{dist_text(o)}"
                         + (f" ({o['not_located']} of {o['samples']} samples not located)" if o["not_located"] else "")
                         if o else row.get("orb_err", "-"))
             if row["lift"]:
                 rep = row["lift"]["report"]
                 d = rep["distortion"]["f"]
-                lift_text = (f"{run_status(rep, row['lift_cap'])} | {d['mean']:.3f} / {d['median']:.3f} / "
-                             f"{d['p95']:.3f} / {fmt(d['max'])} | {fmt(rep['seconds']['total'])}")
+                lift_text = f"{run_status(rep, row['lift_cap'])} | {dist_text(d)} | {fmt(rep['seconds']['total'])}"
             else:
                 lift_text = f"{row.get('lift_err', '-')} | | "
             self.md.append(f"| {name} | {cones} | {orb_text} | {'%d, %d' % o['flipped'] if o else '-'} | "
@@ -780,8 +784,8 @@ class Bench:
             if orb.get("orb") and orb.get("lift"):
                 od, ld = orb["orb"], orb["lift"]["report"]["distortion"]["f"]
                 lower = [k for k in ("mean", "max") if ld[k] < od[k]]
-                orb_measured = (f"; on 3 cones: liftmap mean {ld['mean']:.3f}, max {fmt(ld['max'])} vs orbifold "
-                                f"mean {od['mean']:.3f}, max {fmt(od['max'])}"
+                orb_measured = (f"; on 3 cones: liftmap mean {fmt(ld['mean'])}, max {fmt(ld['max'])} vs orbifold "
+                                f"mean {fmt(od['mean'])}, max {fmt(od['max'])}"
                                 + (" (liftmap capped)" if orb.get("lift_cap") else ""))
                 orb_verdict = ("met against the orbifold baseline" if len(lower) == 2 else
                                "missed against the orbifold baseline: " + ", ".join(
@@ -789,7 +793,8 @@ class Bench:
                                    for k in ("mean", "max") if k not in lower))
             else:
                 orb_measured = ""
-                orb_verdict = "orbifold comparison not measured (section 1b)"
+                orb_verdict = "orbifold comparison not measured (section 1b" + (
+                    f": liftmap on the 3 cones: {orb['lift_err'][:160]})" if orb.get("lift_err") else ")")
             t.append((f"{name}: lower mean and max distortion of f than both baselines",
                       f"mean {d['mean']:.3f} vs {bd['mean']:.3f}, max {fmt(d['max'])} vs {fmt(bd['max'])}"
                       + (" (capped run)" if res["cap"] is not None else "") + orb_measured,
