@@ -315,7 +315,7 @@ class Bench:
         self.md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         self.md += rows
         self.md += [""] + details
-        if self.plt and self.pair_results:
+        if self.plt and any(res["runs"] for res in self.pair_results.values()):
             fig, ax = self.plt.subplots(figsize=(6, 4))
             for name, res in self.pair_results.items():
                 if res["runs"]:
@@ -756,7 +756,8 @@ class Bench:
             t.append(("whole pipeline on camel-cow with 20 landmarks under 5 s",
                       measured + "; the example's landmarks, not 20 (the 20-landmark cut: section 5)", verdict))
         else:
-            t.append(("whole pipeline on camel-cow with 20 landmarks under 5 s", "not measured", "-"))
+            t.append(("whole pipeline on camel-cow with 20 landmarks under 5 s",
+                      "not measured" + (f": {cc['error']}" if cc and cc["error"] else ""), "-"))
         cv = [i for i in getattr(self, "cvxopt_results", []) if i["cvxopt"] is not None]
         if cv:
             big = max(cv, key=lambda i: i["size"])
