@@ -6,7 +6,7 @@ packages=(
   cmake ninja-build g++ make pkg-config
   libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libstb-dev
-  python3 python3-numpy python3-cvxopt
+  python3 python3-numpy python3-cvxopt python3-matplotlib
   clang-format clang-tidy
 )
 missing=()

@@ -98,8 +98,8 @@ class Instance:
             total += vals.max() if self.p_inf else math.sqrt(np.dot(areas, vals ** 2))
         return total
 
-    def solve(self):
-        """Builds and solves the SOCP; returns (objective, X)."""
+    def solve(self, tolerances=(1e-10, 1e-9, 1e-8)):
+        """Builds and solves the SOCP, trying each tolerance in turn; returns (objective, X)."""
         nx = 2 * self.n_slots
         n = nx
         rows_l, rows_q = [], []  # linear rows: (coeffs dict, rhs); cones: list of rows
@@ -202,7 +202,7 @@ class Instance:
         # CVXOPT's Nesterov-Todd scaling update can take the square root of a slightly negative number in its
         # last iterations when the tolerances are tighter than it can reach ("domain error"): retry looser.
         # 1e-8 is still two orders below what the comparison needs (1e-6 objectives, 1e-4 minimisers).
-        for tol in (1e-10, 1e-9, 1e-8):
+        for tol in tolerances:
             solvers.options.update({"show_progress": bool(os.environ.get("CVXOPT_PROGRESS")), "abstol": tol,
                                     "reltol": tol, "feastol": tol, "maxiters": 200})
             try:
