@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "core/errors.h"
@@ -225,7 +226,21 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const auto t0 = std::chrono::steady_clock::now();
     set_rotations(sp, X);
-    const BarrierResult br = solve_convex_subproblem(sp, X, options.solver, cholesky);
+    BarrierResult br;
+    try {
+      br = solve_convex_subproblem(sp, X, options.solver, cholesky);
+    } catch (const PipelineError& e) {
+      // Name the iteration and the distortion it started from: the solver's own message cannot.
+      const double start_max = res.iterations.back().max_distortion;
+      std::ostringstream msg;
+      msg << "joint_flatten: outer iteration " << iter + 1 << ": " << e.what()
+          << " (the flattenings' max distortion was " << start_max << ")";
+      if (start_max > 1e6) {
+        msg << "; distortions this large are beyond double precision: add landmarks at the shapes' extremities "
+               "(limbs, ears, tails), so that the cut opens them instead of the Tutte start squeezing them";
+      }
+      throw PipelineError(msg.str());
+    }
     // The start X is feasible with objective E(X) (the rotations are its polar ones): a result above that
     // (only possible if the solver stopped early, far from the central path's end) would break monotonicity.
     // Every iterate is strictly feasible, so the previous one is a valid (liftable) result: stop there rather
