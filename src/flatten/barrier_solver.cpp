@@ -334,13 +334,13 @@ struct AuxProblem {
     } else {  // g4 = e - R, R = |(n + c, 1/m)|
       const double r = n + c, sv = 1 / m;
       const double R = std::sqrt(r * r + sv * sv);
-      const double dR = (r + sv / (m * m)) / R;
-      const double d2R = (1 + 1 / (m * m * m * m) + 2 * sv / (m * m * m)) / R - dR * dR / R;
+      const double d_r = (r + sv / (m * m)) / R;
+      const double d2_r = (1 + 1 / (m * m * m * m) + 2 * sv / (m * m * m)) / R - d_r * d_r / R;
       const double g4 = e - R;
-      gc += dR / g4;
+      gc += d_r / g4;
       ge += -1 / g4;
-      hcc += dR * dR / (g4 * g4) + d2R / g4;
-      hce += -dR / (g4 * g4);
+      hcc += d_r * d_r / (g4 * g4) + d2_r / g4;
+      hce += -d_r / (g4 * g4);
       hee += 1 / (g4 * g4);
     }
     if (!ghost) {
