@@ -22,7 +22,6 @@
 #include <exception>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <queue>
 #include <string>
 #include <unordered_map>
@@ -30,6 +29,7 @@
 
 #include "io/landmarks.h"
 #include "io/read_mesh.h"
+#include "map/map_meshes.h"
 
 namespace {
 
@@ -283,14 +283,8 @@ int run(int argc, char** argv) {
   std::vector<Eigen::Matrix2d> jb_inv(eb.U.size());
   for (size_t f = 0; f < eb.U.size(); ++f) jb_inv[f] = face_jacobian(eb.X[f], eb.U[f]).inverse();
 
-  // Centroids of the n^2 sub-triangles of a face, as `liftmap map` samples f.
-  std::vector<std::array<double, 3>> samples;
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j + i < n; ++j) {
-      samples.push_back({(i + 1.0 / 3) / n, (j + 1.0 / 3) / n, 1.0 - (i + j + 2.0 / 3) / n});
-      if (i + j + 1 < n) samples.push_back({(i + 2.0 / 3) / n, (j + 2.0 / 3) / n, 1.0 - (i + j + 4.0 / 3) / n});
-    }
-  }
+  // The samples and statistics of `liftmap map`'s distortion of f.
+  const std::vector<std::array<double, 3>> samples = liftmap::sub_triangle_centroids(n);
   std::vector<double> values, weights;
   int not_located = 0, moved = 0;
   for (size_t f = 0; f < ea.U.size(); ++f) {
@@ -319,24 +313,16 @@ int run(int argc, char** argv) {
     }
   }
   if (values.empty()) throw std::runtime_error("no sample of A could be located in B's embedding");
-  std::vector<size_t> order(values.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
-  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
-  double mean = 0, acc = 0, median = -1, p95 = -1;
-  for (size_t i = 0; i < values.size(); ++i) mean += values[i] * weights[i] / total;
-  for (const size_t i : order) {
-    acc += weights[i];
-    if (median < 0 && acc >= 0.5 * total) median = values[i];
-    if (p95 < 0 && acc >= 0.95 * total) p95 = values[i];
-  }
+  const liftmap::DistortionStats stats = liftmap::weighted_stats(
+      Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())),
+      Eigen::Map<const Eigen::VectorXd>(weights.data(), static_cast<Eigen::Index>(weights.size())));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf(
       "orbifold cones %d %d %d %d %d %d faces %zu %zu flipped_a %d flipped_b %d samples %zu not_located %d "
       "moved %d group %zu mean %.6g median %.6g p95 %.6g max %.6g embed_seconds %.3f seconds %.3f\n",
       cones_a[0], cones_b[0], cones_a[1], cones_b[1], cones_a[2], cones_b[2], ea.U.size(), eb.U.size(), ea.flipped,
-      eb.flipped, values.size() + static_cast<size_t>(not_located), not_located, moved, group.size(), mean, median, p95,
-      values[order.back()], embed_seconds, seconds);
+      eb.flipped, values.size() + static_cast<size_t>(not_located), not_located, moved, group.size(), stats.mean,
+      stats.median, stats.p95, stats.max, embed_seconds, seconds);
   return 0;
 }
 

@@ -118,6 +118,40 @@ struct SideTranslator {
   }
 };
 
+Eigen::Matrix2d jacobian_matrix(const Eigen::MatrixXd& P, int f) {
+  const double alpha = P(f, 0), beta = P(f, 1), gamma = P(f, 2), delta = P(f, 3);
+  Eigen::Matrix2d A;
+  A << alpha + gamma, delta - beta, beta + delta, alpha - gamma;
+  return A;
+}
+
+/// Per-sample distortion max(Sigma, 1/sigma) of the map from one disk to the other, J = A_target^-1 A_source.
+void sample_map_distortion(const Mesh& source, const Eigen::MatrixXd& P_source, const Eigen::VectorXd& area_source,
+                           const Mesh& target, const Eigen::MatrixXd& P_target, int n,
+                           const std::function<SurfacePoint(const SurfacePoint&)>& map, Eigen::VectorXd& values,
+                           Eigen::VectorXd& weights) {
+  const int nf = source.n_faces();
+  const int per_face = n * n;
+  values.resize(static_cast<Eigen::Index>(nf) * per_face);
+  weights.resize(values.size());
+  const std::vector<std::array<double, 3>> samples = sub_triangle_centroids(n);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Matrix2d A = jacobian_matrix(P_source, f);
+    for (int s = 0; s < per_face; ++s) {
+      const SurfacePoint y =
+          as_face_point(target, map(SurfacePoint::in_face(FaceId(f), samples[static_cast<size_t>(s)])));
+      const Eigen::Matrix2d J = jacobian_matrix(P_target, y.face.idx).inverse() * A;
+      const Eigen::Vector2d sv = Eigen::JacobiSVD<Eigen::Matrix2d>(J).singularValues();
+      const auto k = static_cast<Eigen::Index>(f) * per_face + s;
+      values(k) = std::max(sv(0), 1.0 / sv(1));
+      weights(k) = area_source(f) / per_face;
+    }
+  }
+}
+
+}  // namespace
+
 DistortionStats weighted_stats(const Eigen::VectorXd& values, const Eigen::VectorXd& weights) {
   DistortionStats s;
   if (values.size() == 0) return s;
@@ -143,23 +177,7 @@ DistortionStats weighted_stats(const Eigen::VectorXd& values, const Eigen::Vecto
   return s;
 }
 
-Eigen::Matrix2d jacobian_matrix(const Eigen::MatrixXd& P, int f) {
-  const double alpha = P(f, 0), beta = P(f, 1), gamma = P(f, 2), delta = P(f, 3);
-  Eigen::Matrix2d A;
-  A << alpha + gamma, delta - beta, beta + delta, alpha - gamma;
-  return A;
-}
-
-/// Per-sample distortion max(Sigma, 1/sigma) of the map from one disk to the other, J = A_target^-1 A_source.
-void sample_map_distortion(const Mesh& source, const Eigen::MatrixXd& P_source, const Eigen::VectorXd& area_source,
-                           const Mesh& target, const Eigen::MatrixXd& P_target, int n,
-                           const std::function<SurfacePoint(const SurfacePoint&)>& map, Eigen::VectorXd& values,
-                           Eigen::VectorXd& weights) {
-  const int nf = source.n_faces();
-  const int per_face = n * n;
-  values.resize(static_cast<Eigen::Index>(nf) * per_face);
-  weights.resize(values.size());
-  // Centroids of the n^2 sub-triangles of a face (upright and inverted), all of equal area.
+std::vector<std::array<double, 3>> sub_triangle_centroids(int n) {
   std::vector<std::array<double, 3>> samples;
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j + i < n; ++j) {
@@ -167,22 +185,8 @@ void sample_map_distortion(const Mesh& source, const Eigen::MatrixXd& P_source, 
       if (i + j + 1 < n) samples.push_back({(i + 2.0 / 3) / n, (j + 2.0 / 3) / n, 1.0 - (i + j + 4.0 / 3) / n});
     }
   }
-#pragma omp parallel for schedule(dynamic, 64)
-  for (int f = 0; f < nf; ++f) {
-    const Eigen::Matrix2d A = jacobian_matrix(P_source, f);
-    for (int s = 0; s < per_face; ++s) {
-      const SurfacePoint y =
-          as_face_point(target, map(SurfacePoint::in_face(FaceId(f), samples[static_cast<size_t>(s)])));
-      const Eigen::Matrix2d J = jacobian_matrix(P_target, y.face.idx).inverse() * A;
-      const Eigen::Vector2d sv = Eigen::JacobiSVD<Eigen::Matrix2d>(J).singularValues();
-      const auto k = static_cast<Eigen::Index>(f) * per_face + s;
-      values(k) = std::max(sv(0), 1.0 / sv(1));
-      weights(k) = area_source(f) / per_face;
-    }
-  }
+  return samples;
 }
-
-}  // namespace
 
 struct MapIndex {
   Eigen::MatrixXd VA, VB;

@@ -3,6 +3,7 @@
 /// into the bijection, express it on the input meshes, and verify it.
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -35,6 +36,13 @@ struct DistortionStats {
   double p95 = 0;     ///< area-weighted 95th percentile
   double max = 0;
 };
+
+/// Area-weighted mean, median, 95th percentile and max of `values` (one weight each); all 0 if empty.
+DistortionStats weighted_stats(const Eigen::VectorXd& values, const Eigen::VectorXd& weights);
+
+/// Barycentric coordinates of the centroids of a face's n^2 sub-triangles (upright and inverted, all of equal
+/// area): the samples at which the distortion of f and g is measured (MapOptions::distortion_samples_per_edge).
+std::vector<std::array<double, 3>> sub_triangle_centroids(int n);
 
 /// Checks of the final map; `passed` is false if any of them fails its tolerance.
 struct MapVerification {
