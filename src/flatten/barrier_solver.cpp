@@ -2,13 +2,13 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <boost/math/tools/toms748_solve.hpp>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
 
 #include "core/errors.h"
+#include "flatten/face_auxiliaries.h"
 
 namespace liftmap {
 
@@ -285,70 +285,8 @@ AuxBounds aux_bounds(const Vec7& q, const FaceSetup& fs) {
   return b;
 }
 
-/// p = 2: a face's auxiliary problem at fixed positions: minimise over (c, e) the face's barrier plus its share of
-/// the objective cones' barrier, linearised in S_m: (t / 2 T_m) w_j e_j^2 = quad e^2 / 2. The same terms as
-/// barrier_args and barrier_derivatives, restricted to (c, e). It is solved exactly, as a problem in ONE variable:
-/// for a fixed c the optimal e has a closed form (h of eq. 3) or is the root of a monotone function (eq. 2), and
-/// what remains, phi(u) = min_e value(lo + u, e) of the slack u = c - |(gamma, delta)|, is convex with a slope that
-/// goes from -infinity at u = 0 to +infinity at the upper bound. Its root is bracketed and found by TOMS 748.
-/// (A damped Newton iteration in (c, e) from a fallback start in the middle of the interval stopped far from the
-/// optimum on faces whose optimal slack is ~1e-6: on camel-cow it left single faces with c at 0.38 instead of
-/// 0.002, each adding ~700 to the merit at t = 1e6, and one centring took 50 Newton steps instead of 12.)
-struct AuxProblem {
-  double lo = 0;     // |(gamma, delta)|: c > lo
-  double width = 0;  // c < lo + width: l for energy faces, min(l, bound - n) for ghosts
-  double n = 0;      // |(alpha, beta)|
-  double l = 0;      // alpha cos + beta sin
-  double bound = 0;  // ghost faces: upper bound of Sigma
-  double quad = 0;   // curvature of the linearised objective term in e (energy faces)
-  bool ghost = false;
-  bool h_max = false;
-
-  /// The optimal e for the slack u (0 on ghost faces, where e is unused), and its two epigraph slacks
-  /// e - (n + c), e - 1/m (eq. 2) or e - R (eq. 3, in `first`).
-  struct Epigraph {
-    double e = 0, first = 0, second = 0;
-  };
-  [[nodiscard]] Epigraph optimal_e(double u) const {
-    if (ghost) return {};
-    const double c = lo + u, m = (l - lo) - u;
-    if (!h_max) {
-      // minimise quad e^2 / 2 - log(e - R): quad e (e - R) = 1, e - R = 2 / (quad (R + sqrt(R^2 + 4 / quad))).
-      const double r = n + c, s = 1 / m;
-      const double R = std::sqrt(r * r + s * s);
-      const double slack = 2 / (quad * (R + std::sqrt(R * R + 4 / quad)));
-      return {R + slack, slack, 0};
-    }
-    // minimise quad e^2 / 2 - log(e - a) - log(e - b), a = n + c, b = 1 / m: the root of the increasing, concave
-    // f(v) = quad (M + v) - 1 / (v + M - a) - 1 / (v + M - b), e = M + v, M = max(a, b). Newton steps from a
-    // point left of the root stay left of it and increase monotonically.
-    const double a = n + c, b = 1 / m, big = std::max(a, b);
-    const double ka = big - a, kb = big - b;                                      // one of them is 0
-    double v = 2 / (quad * big + std::sqrt(quad * quad * big * big + 4 * quad));  // root without the other term
-    for (int it = 0; it < 60; ++it) {
-      const double fa = 1 / (v + ka), fb = 1 / (v + kb);
-      const double f = quad * (big + v) - fa - fb;
-      const double dv = -f / (quad + fa * fa + fb * fb);
-      v += dv;
-      if (!(std::abs(dv) > 1e-15 * v)) break;
-    }
-    return {big + v, v + ka, v + kb};
-  }
-
-  /// phi'(u): the derivative of the face barrier in c at the optimal e (envelope theorem).
-  [[nodiscard]] double slope(double u) const {
-    const double c = lo + u, g1 = u * (2 * lo + u), m = (l - lo) - u;
-    double d = -2 * c / g1;
-    if (ghost) return d + 1 / m + 1 / ((bound - n - lo) - u);
-    const Epigraph ep = optimal_e(u);
-    if (h_max) return d + 1 / ep.first + ep.e / (m * ep.second);  // e - a, and e m - 1 = m (e - b)
-    const double r = n + c, s = 1 / m;
-    const double R = std::sqrt(r * r + s * s);
-    return d + (r + s * s * s) / (R * ep.first);  // dR/dc / (e - R)
-  }
-};
-
-/// p = 2: moves a face's auxiliaries (c_j, e_j) to the minimiser of its AuxProblem at its fixed positions.
+/// p = 2: moves a face's auxiliaries (c_j, e_j) to the minimiser of its FaceAuxiliaryProblem at its fixed positions
+/// (solve_face_auxiliaries).
 /// Because the merit is concave in S_m, this never raises the merit (it lowers an upper bound that touches it).
 /// Auxiliaries that sit at their optimum for the positions cannot be squeezed against their cones; without this,
 /// repeated fraction-to-the-boundary repairs put c_j within 1e-16 of |(gamma, delta)|, the gradients reached
@@ -359,50 +297,18 @@ struct AuxProblem {
 bool centre_auxiliaries(const FaceSetup& fs, const Settings& st, double coef, Vec7& q) {
   const AuxBounds b = aux_bounds(q, fs);
   if (!b.open()) return false;
-  AuxProblem p;
+  FaceAuxiliaryProblem p;
   p.lo = b.lo;
-  p.width = b.hi - b.lo;
   p.n = b.n;
   p.l = b.l;
   p.bound = fs.bound;
   p.ghost = fs.ghost();
   p.h_max = st.h_max;
   p.quad = fs.ghost() ? 0.0 : coef * fs.w;
-  // Bracket the root of the increasing slope: from the warm start, move towards the end where the slope
-  // changes sign, quartering the distance to it (the optimal slack can be 1e-10 of the interval).
-  const double w = p.width;
-  double u = q(kC) - b.lo;
-  if (!(u > 0 && u < w)) u = 1e-3 * w;
-  double below = 0, above = w, s_below = 0, s_above = 0;
-  double s = p.slope(u);
-  for (int k = 0; k < 200 && s != 0; ++k) {
-    if (std::isnan(s)) return false;
-    if (s < 0) {
-      below = u;
-      s_below = s;
-      if (above < w) break;
-      u = w - 0.25 * (w - u);
-    } else {
-      above = u;
-      s_above = s;
-      if (below > 0) break;
-      u *= 0.25;
-    }
-    if (!(u > 0 && u < w)) break;
-    s = p.slope(u);
-  }
-  if (s != 0) {
-    // No sign change inside the interval (or an infinite slope at a bracket end): the positions are numerically
-    // at the boundary of their domain.
-    if (!(below > 0 && above < w) || !std::isfinite(s_below) || !std::isfinite(s_above)) return false;
-    boost::uintmax_t max_iter = 60;
-    const auto root =
-        boost::math::tools::toms748_solve([&p](double x) { return p.slope(x); }, below, above, s_below, s_above,
-                                          boost::math::tools::eps_tolerance<double>(40), max_iter);
-    u = 0.5 * (root.first + root.second);
-  }
-  q(kC) = b.lo + u;
-  q(kE) = p.optimal_e(u).e;
+  FaceAuxiliaries aux;
+  if (!solve_face_auxiliaries(p, q(kC), aux)) return false;
+  q(kC) = aux.c;
+  q(kE) = aux.e;
   return true;
 }
 
