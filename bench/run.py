@@ -223,8 +223,9 @@ def machine_lines(args):
         mem_gb = float("nan")
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
-    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"],
-                           capture_output=True, text=True).stdout.strip()
+    # The run's own outputs (this file's plots, an earlier RESULTS.md) do not count as changes to the code measured.
+    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "--", ".",
+                            ":!bench/RESULTS.md", ":!bench/plots"], capture_output=True, text=True).stdout.strip()
     build_type = "?"
     cache = os.path.join(args.build, "CMakeCache.txt")
     if os.path.exists(cache):
