@@ -651,6 +651,7 @@ class Bench:
         out_dir = os.path.join(self.args.build, "bench", "flatten", "instances")
         self.log("bench_flatten " + " ".join(map(str, sizes)))
         instances = []
+        rc = 0
         try:
             rc, _, _, out, err = run_cmd([exe, out_dir] + [str(s) for s in sizes], self.budget.left())
         except TimedOut as e:
@@ -704,6 +705,10 @@ class Bench:
                                f"({inst['steps']}) | {inst['note']} | | |")
         if not instances:
             self.md.append(f"| bench_flatten produced no instance: {err.strip()[-300:]} | | | | |")
+        missing = [str(x) for x in sizes if x not in [i["size"] for i in instances]]
+        if instances and (rc != 0 or missing):
+            self.md += ["", f"**bench_flatten failed** (exit {rc}) before the sizes {', '.join(missing)}: "
+                        f"`{err.strip()[-300:]}`"]
         self.md.append("")
         self.cvxopt_results = instances
         if self.plt and done:
