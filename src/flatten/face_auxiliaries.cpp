@@ -67,18 +67,21 @@ bool solve_face_auxiliaries(const FaceAuxiliaryProblem& problem, double c_warm, 
   if (!(u > 0 && u < w)) u = 1e-3 * w;
   double below = 0, above = w, s_below = 0, s_above = 0;
   double s = slope(p, u);
-  for (int k = 0; k < 200 && s != 0; ++k) {
+  // The first move is a small one (1%): in the line search and after each accepted step, the warm start is the
+  // face's optimum at a nearby point, and a tight bracket leaves TOMS 748 few iterations.
+  double ratio = 1.01;
+  for (int k = 0; k < 200 && s != 0; ++k, ratio = 4) {
     if (std::isnan(s)) return false;
     if (s < 0) {
       below = u;
       s_below = s;
       if (above < w) break;
-      u = u < 0.25 * w ? 4 * u : w - 0.25 * (w - u);
+      u = u < w / ratio ? ratio * u : w - (w - u) / ratio;
     } else {
       above = u;
       s_above = s;
       if (below > 0) break;
-      u = w - u < 0.25 * w ? w - 4 * (w - u) : 0.25 * u;
+      u = w - u < w / ratio ? w - ratio * (w - u) : u / ratio;
     }
     if (!(u > 0 && u < w)) break;
     s = slope(p, u);
