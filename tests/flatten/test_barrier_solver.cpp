@@ -1,6 +1,7 @@
 #include "flatten/barrier_solver.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <limits>
@@ -9,9 +10,36 @@
 #include "disk_patches.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/joint_flatten.h"
+#include "flatten/sparse_cholesky.h"
 
 namespace liftmap {
 namespace {
+
+// SparseCholesky runs CHOLMOD's OpenMP regions inline through its GOMP_parallel shim; every other region (ours, the
+// host application's) must still get its threads, and the factorisation must still be right.
+TEST(flatten_sparse_cholesky, FactorisesAndLeavesOtherParallelRegionsTheirThreads) {
+  const int n = 400;  // a path Laplacian plus identity: CHOLMOD opens regions for it like for the real systems
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int i = 0; i < n; ++i) {
+    trip.emplace_back(i, i, 3.0);
+    if (i > 0) trip.emplace_back(i, i - 1, -1.0);
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(trip.begin(), trip.end());
+  SparseCholesky chol;
+  ASSERT_TRUE(chol.factorize(A));
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 3);
+  const Eigen::MatrixXd x = chol.solve(b);
+  const Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Lower>();
+  EXPECT_LT((full * x - b).norm(), 1e-12 * b.norm());
+  int team = 0;
+#pragma omp parallel
+  {
+#pragma omp single
+    team = omp_get_num_threads();
+  }
+  EXPECT_EQ(team, omp_get_max_threads());
+}
 
 struct Combo {
   double p;
