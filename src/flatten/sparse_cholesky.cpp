@@ -24,7 +24,9 @@ thread_local bool g_serial_regions = false;  // set by SerialBlas on the thread 
 // per Newton step, the outer iteration 8.1 -> 6.5 s. Elsewhere (our own loops, a host application's) every region
 // goes to libgomp. If this definition is not the one the dynamic linker binds (a module loaded with RTLD_LOCAL, a
 // runtime other than libgomp), nothing changes but the speed: SerialBlas still keeps the regions to one thread.
-extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
+// The name is libgomp's ABI, hence outside our naming convention.
+extern "C" void GOMP_parallel(  // NOLINT(readability-identifier-naming)
+    void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
   using Fn = void (*)(void (*)(void*), void*, unsigned, unsigned);
   static const Fn real = reinterpret_cast<Fn>(dlsym(RTLD_NEXT, "GOMP_parallel"));
   if (liftmap::g_serial_regions || real == nullptr) {
