@@ -493,6 +493,12 @@ Pattern make_pattern(const Setup& s) {
   return p;
 }
 
+// Bound of f0 minus the optimum at a point whose Newton decrement for t f0 + barrier is lambda (f0 linear): nu / t
+// at the central point, plus sqrt(nu) ||x - x*(t)|| / t <= sqrt(nu) lambda / (1 - lambda) / t off it.
+double gap_bound(double nu, double lambda, double t) {
+  return lambda < 1 ? (nu + lambda * std::sqrt(nu) / (1 - lambda)) / t : kInf;
+}
+
 double total_nu(const Setup& s) {
   // Barrier parameters: 2 per second-order cone, 1 per convex-function constraint.
   const double per_face = 2.0 + (s.settings.h_max ? 1.0 + 2.0 : 1.0);
@@ -890,7 +896,9 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         report(0, false);
         break;
       }
-      if (lambda2 / 2 <= options.newton_tolerance) {
+      if (lambda2 / 2 <= options.newton_tolerance ||
+          (last_centring && lambda2 / 2 <= options.centring_tolerance &&
+           gap_bound(nu, std::sqrt(lambda2), t) <= options.relative_gap * f0(z))) {
         report(0, false);
         break;
       }
@@ -946,8 +954,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
     ++result.centrings;
     if (stalled) ++result.stalled_centrings;
     // Gap bound at a point whose Newton decrement is lambda < 1 (exactly nu / t on the central path).
-    const double lambda = std::sqrt(end_lambda2);
-    const double gap = lambda < 1 ? (nu + lambda * std::sqrt(nu) / (1 - lambda)) / t : kInf;
+    const double gap = gap_bound(nu, std::sqrt(end_lambda2), t);
     result.gap_bound = gap;
     if (done) break;
     if (gap <= options.relative_gap * f0(z)) {
