@@ -77,17 +77,11 @@ SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
   // Failures are reported through factorize()'s return value; CHOLMOD's own warnings would only flood stdout.
   cholmod_common& cm = impl_->llt.cholmod();
   cm.print = 0;
-  // Coarser supernodes than CHOLMOD's defaults (nrelax 4/16/48, zrelax 0.8/0.1/0.05): each supernode is a few BLAS
-  // calls, and on these 2D-mesh systems the defaults make many tiny ones whose call overhead dominates. Measured
-  // per factorisation (bench/flatten/profile_flatten, same machine, one run after the other, serialised as in
-  // factorize): camel-cow's 46k unknowns 0.091 s -> 0.048 s, fandisk-bunny's 0.215 s -> 0.122 s. Four times
-  // coarser was the best of 1-8x.
-  cm.nrelax[0] = 16;
-  cm.nrelax[1] = 64;
-  cm.nrelax[2] = 192;
-  cm.zrelax[0] = 0.8;
-  cm.zrelax[1] = 0.4;
-  cm.zrelax[2] = 0.2;
+  // CHOLMOD's default supernode relaxation (nrelax 4/16/48, zrelax 0.8/0.1/0.05). Four times coarser supernodes
+  // were faster while libgomp's per-region cost came with every supernode (0.091 -> 0.048 s per factorisation on
+  // camel-cow); with the regions inline (GOMP_parallel above) the defaults are faster again. Measured with
+  // bench/flatten/profile_flatten, one outer iteration, alternating runs: camel-cow 31.5 -> 25.5 ms per
+  // factorisation, fandisk-bunny 101-102 -> 83-94 ms.
 }
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
