@@ -945,10 +945,11 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         report(step, false);
         break;
       }
-      // p = 2: the accepted point's auxiliaries are centred for the previous step's T_m, which the next step
-      // replaces by the optimal T_m of the new S_m. Centring them again for those (as this did until 22eff18) cost a
-      // tenth of the time and saved no Newton steps: camel-cow, alternating runs of 2 outer iterations, 10.45 / 11.47 s
-      // with it against 9.34 / 10.37 s without, steps 75 + 52 against 74 + 53, energies equal to 7 digits.
+      // p = 2: step_state_2 centred the accepted point's auxiliaries with the coefficients t / T_m of the previous
+      // point, then set T_m to the optimum for the new S_m. Centring them again with the new T_m (as this did until
+      // 22eff18) cost a tenth of the time and saved no Newton steps: camel-cow, alternating runs of 2 outer
+      // iterations, 10.45 / 11.47 s with it against 9.34 / 10.37 s without, steps 75 + 52 against 74 + 53, energies
+      // equal to 7 digits.
       z = std::move(zn);
       report(step, repaired);
       if (roughly_centred) break;
