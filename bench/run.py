@@ -232,6 +232,14 @@ def machine_lines(args):
         with open(cache) as f:
             m = re.search(r"CMAKE_BUILD_TYPE:STRING=(.*)", f.read())
             build_type = m.group(1) if m else build_type
+    # CHOLMOD's factorisation time depends on which BLAS Debian's alternatives resolve libblas.so.3 to (the reference
+    # BLAS is ~2.5x slower than OpenBLAS on camel-cow).
+    blas = "unknown"
+    for lib_dir in ("/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu", "/usr/lib"):
+        link = os.path.join(lib_dir, "libblas.so.3")
+        if os.path.exists(link):
+            blas = os.path.realpath(link)
+            break
     return [
         f"- command: `{' '.join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:])}` (from `{ROOT}`)",
         f"- commit: {commit}{' with uncommitted changes to tracked files' if dirty else ''}; build: "
@@ -239,6 +247,7 @@ def machine_lines(args):
         f"- machine: {cpu}, {os.cpu_count()} cores, {mem_gb:.1f} GB, {platform.platform()}",
         f"- niceness {os.nice(0)}, OMP_WAIT_POLICY={os.environ.get('OMP_WAIT_POLICY', 'unset')}, "
         f"OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}",
+        f"- BLAS (libblas.so.3, used by CHOLMOD and CVXOPT alike): `{blas}`",
     ]
 
 
