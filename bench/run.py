@@ -233,7 +233,7 @@ def machine_lines(args):
             m = re.search(r"CMAKE_BUILD_TYPE:STRING=(.*)", f.read())
             build_type = m.group(1) if m else build_type
     # CHOLMOD's factorisation time depends on which BLAS Debian's alternatives resolve libblas.so.3 to (the reference
-    # BLAS is ~2.5x slower than OpenBLAS on camel-cow).
+    # BLAS took 2.7x as long as OpenBLAS per factorisation on camel-cow, 64 against 24 ms).
     blas = "unknown"
     for lib_dir in ("/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu", "/usr/lib"):
         link = os.path.join(lib_dir, "libblas.so.3")
