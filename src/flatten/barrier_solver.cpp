@@ -10,10 +10,13 @@
 
 #include "core/errors.h"
 #include "flatten/face_auxiliaries.h"
+#include "flatten/subproblem_faces.h"
 
 namespace liftmap {
 
 namespace {
+
+using namespace subproblem;  // NOLINT(google-build-using-namespace): the shared per-face data
 
 // Local variables of one face: q = (alpha, beta, gamma, delta, c, e, T).
 //   c >= |(gamma, delta)|                        (second-order cone; Sigma <= |(alpha,beta)| + c,
@@ -36,34 +39,12 @@ constexpr int kE = 5;
 constexpr int kT = 6;
 using Vec7 = Eigen::Matrix<double, 7, 1>;
 using Mat7 = Eigen::Matrix<double, 7, 7>;
-using Mat46 = Eigen::Matrix<double, 4, 6>;
-using Vec6 = Eigen::Matrix<double, 6, 1>;
-using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat62 = Eigen::Matrix<double, 6, 2>;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Below this many faces the per-face loops run serially: thread start-up and contention cost more than they save.
-constexpr int kParallelFaces = 4000;
 /// Eigenvalue ratio below which a face's 4x4 Schur block counts as ill-conditioned (its product with the corner
 /// map is then cleaned of negative eigenvalues again).
 constexpr double kWellConditioned = 1e-8;
-
-/// Constant data of one face of either mesh.
-struct FaceSetup {
-  Mat46 S;                 // corners (u0,v0,u1,v1,u2,v2) -> (alpha,beta,gamma,delta)
-  std::array<int, 6> pos;  // indices of the corners' coordinates in the position vector
-  std::array<int, 6> var;  // indices in the unknowns (-1: the fixed gauge vertex)
-  double cs = 1, sn = 0;   // rotation of eq. (7b)
-  double w = 0;            // area |t_j|
-  double bound = 0;        // ghost faces: upper bound of Sigma_j
-  int mesh = 0;            // 0, 1: the two flattenings; 2: ghost face (constraint only)
-  [[nodiscard]] bool ghost() const { return mesh == 2; }
-};
-
-struct Settings {
-  bool h_max = false;
-  bool p_inf = false;
-};
 
 /// The arguments g_k > 0 of the log-barrier terms -log(g_k) of one face; false if outside the domain.
 struct BarrierArgs {
@@ -207,55 +188,8 @@ double face_energy(const Eigen::Vector4d& a, double cs, double sn, bool h_max) {
   return h_max ? std::max(n + c, 1.0 / st) : std::hypot(n + c, 1.0 / st);
 }
 
-/// The per-face data of one subproblem, built once per call.
-struct Setup {
-  std::vector<FaceSetup> faces;
-  int n_faces = 0;
-  int n_pos = 0;
-  int n_var = 0;
-  Settings settings;
-};
-
-constexpr int kFixedSlot = 0;
 // Centrings in a row that may stall (precision limit, no gap bound) before the method gives up on higher t.
 constexpr int kMaxConsecutiveStalls = 3;
-
-Setup make_setup(const ConvexSubproblem& problem) {
-  Setup s;
-  s.settings.h_max = problem.h == DistortionCombiner::kMax;
-  s.settings.p_inf = std::isinf(problem.p);
-  s.n_pos = 2 * problem.n_slots;
-  s.n_var = s.n_pos - 2;
-  for (int mi = 0; mi < 3; ++mi) {
-    const SubproblemMesh& mesh = mi < 2 ? problem.meshes[static_cast<size_t>(mi)] : problem.ghosts;
-    if (mesh.theta.size() != mesh.F.rows() || mesh.jacobian.G.rows() != mesh.F.rows()) {
-      throw InvalidInputError("convex subproblem: mesh " + std::to_string(mi) + " has inconsistent sizes");
-    }
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-      FaceSetup fs;
-      fs.S = similarity_map(mesh.jacobian.G.row(f));
-      for (int k = 0; k < 3; ++k) {
-        const int v = mesh.F(f, k);
-        if (v < 0 || v >= static_cast<int>(mesh.slot.size())) {
-          throw InvalidInputError("convex subproblem: face " + std::to_string(f) + " has no slot");
-        }
-        const int slot = mesh.slot[static_cast<size_t>(v)];
-        if (slot < 0 || slot >= problem.n_slots) throw InvalidInputError("convex subproblem: slot out of range");
-        for (int d = 0; d < 2; ++d) {
-          fs.pos[static_cast<size_t>(2 * k + d)] = 2 * slot + d;
-          fs.var[static_cast<size_t>(2 * k + d)] = slot == kFixedSlot ? -1 : 2 * slot + d - 2;
-        }
-      }
-      fs.cs = std::cos(mesh.theta(f));
-      fs.sn = std::sin(mesh.theta(f));
-      fs.w = mesh.jacobian.area(f);
-      fs.mesh = mi;
-      s.faces.push_back(fs);
-    }
-  }
-  s.n_faces = static_cast<int>(s.faces.size());
-  return s;
-}
 
 /// The iterate: positions, per-face auxiliaries, and the epigraph variables of the max (p = inf).
 struct State {
@@ -487,46 +421,6 @@ struct FaceSystem {
   double g_t = 0;
 };
 
-/// Sparse lower-triangular pattern of the Schur system and where each face's entries go.
-struct Pattern {
-  Eigen::SparseMatrix<double> A;
-  std::vector<std::array<int, 36>> index;  // per face, entry (r, c) of K -> value index, -1 if not stored
-};
-
-Pattern make_pattern(const Setup& s) {
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<size_t>(s.n_faces) * 21);
-  for (const FaceSetup& fs : s.faces) {
-    for (int r = 0; r < 6; ++r) {
-      for (int c = 0; c < 6; ++c) {
-        const int vr = fs.var[static_cast<size_t>(r)], vc = fs.var[static_cast<size_t>(c)];
-        if (vr >= 0 && vc >= 0 && vr >= vc) trip.emplace_back(vr, vc, 0.0);
-      }
-    }
-  }
-  Pattern p;
-  p.A.resize(s.n_var, s.n_var);
-  p.A.setFromTriplets(trip.begin(), trip.end());
-  p.A.makeCompressed();
-  p.index.resize(static_cast<size_t>(s.n_faces));
-  const int* outer = p.A.outerIndexPtr();
-  const int* inner = p.A.innerIndexPtr();
-  for (int j = 0; j < s.n_faces; ++j) {
-    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-    for (int r = 0; r < 6; ++r) {
-      for (int c = 0; c < 6; ++c) {
-        int& idx = p.index[static_cast<size_t>(j)][static_cast<size_t>(6 * r + c)];
-        idx = -1;
-        const int vr = fs.var[static_cast<size_t>(r)], vc = fs.var[static_cast<size_t>(c)];
-        if (vr < 0 || vc < 0 || vr < vc) continue;
-        const int* it = std::lower_bound(inner + outer[vc], inner + outer[vc + 1], vr);
-        idx = static_cast<int>(it - inner);
-      }
-    }
-  }
-  return p;
-}
-
 // Bound of f0 minus the optimum at a point whose Newton decrement for t f0 + barrier is lambda (f0 linear): nu / t
 // at the central point, plus sqrt(nu) ||x - x*(t)|| / t <= sqrt(nu) lambda / (1 - lambda) / t off it.
 double gap_bound(double nu, double lambda, double t) {
@@ -581,6 +475,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   z.c.resize(s.n_faces);
   z.e.resize(s.n_faces);
   z.T = {0, 0};
+  set_ghost_bounds(z.pos, s);
   for (int j = 0; j < s.n_faces; ++j) {
     const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
     const Vec7 q = local_vars(s, z, j);
@@ -592,7 +487,6 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
     }
     z.c(j) = cn + 0.1 * (l - cn);
     if (fs.ghost()) {
-      s.faces[static_cast<size_t>(j)].bound = kGhostStretch * (std::hypot(q(0), q(1)) + cn);
       z.e(j) = 0;
       continue;
     }

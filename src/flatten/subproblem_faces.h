@@ -1,0 +1,69 @@
+#pragma once
+/// The per-face data of the convex subproblem (10), shared by its two solvers (barrier_solver.cpp,
+/// primal_dual_solver.cpp): each face's corner map, rotation and area, where its corners live in the unknowns,
+/// and the sparsity pattern of the Schur system in the vertex coordinates that both solvers factorise.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <vector>
+
+#include "flatten/barrier_solver.h"
+
+namespace liftmap::subproblem {
+
+using Mat46 = Eigen::Matrix<double, 4, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+/// The slot whose position is fixed (the objective is invariant under translation): its two coordinates are not
+/// unknowns.
+constexpr int kFixedSlot = 0;
+/// Below this many faces the per-face loops run serially: thread start-up and contention cost more than they save.
+constexpr int kParallelFaces = 4000;
+
+/// Constant data of one face of either mesh.
+struct FaceSetup {
+  Mat46 S;                 // corners (u0,v0,u1,v1,u2,v2) -> (alpha,beta,gamma,delta)
+  std::array<int, 6> pos;  // indices of the corners' coordinates in the position vector
+  std::array<int, 6> var;  // indices in the unknowns (-1: the fixed gauge vertex)
+  double cs = 1, sn = 0;   // rotation of eq. (7b)
+  double w = 0;            // area |t_j|
+  double bound = 0;        // ghost faces: upper bound of Sigma_j
+  int mesh = 0;            // 0, 1: the two flattenings; 2: ghost face (constraint only)
+  [[nodiscard]] bool ghost() const { return mesh == 2; }
+};
+
+struct Settings {
+  bool h_max = false;
+  bool p_inf = false;
+};
+
+/// The per-face data of one subproblem, built once per call.
+struct Setup {
+  std::vector<FaceSetup> faces;
+  int n_faces = 0;
+  int n_pos = 0;
+  int n_var = 0;
+  Settings settings;
+};
+
+/// The faces of both meshes, then the ghost faces (bound still 0: set from the start, set_ghost_bounds).
+/// \throw InvalidInputError if a mesh's sizes disagree or a face has no slot.
+Setup make_setup(const ConvexSubproblem& problem);
+
+/// Sets each ghost face's bound of Sigma_j to kGhostStretch times its Sigma_j at the positions `pos` (2 #slots).
+void set_ghost_bounds(const Eigen::VectorXd& pos, Setup& s);
+
+/// (alpha, beta, gamma, delta) of face j at the positions `pos` (2 #slots).
+Eigen::Vector4d face_coordinates(const FaceSetup& fs, const Eigen::VectorXd& pos);
+
+/// Sparse lower-triangular pattern of the Schur system and where each face's entries go.
+struct Pattern {
+  Eigen::SparseMatrix<double> A;
+  std::vector<std::array<int, 36>> index;  // per face, entry (r, c) of K -> value index, -1 if not stored
+};
+/// The lower triangle of the sum of the faces' 6 x 6 corner blocks, over the unknown coordinates.
+Pattern make_pattern(const Setup& s);
+
+}  // namespace liftmap::subproblem
