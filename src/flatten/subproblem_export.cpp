@@ -33,7 +33,7 @@ nlohmann::json mesh_json(const SubproblemMesh& m) {
 }  // namespace
 
 void export_subproblem(const std::string& path, const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                       const BarrierResult& result) {
+                       const BarrierResult& result, const BarrierResult* primal_dual) {
   nlohmann::json j;
   j["p"] = std::isinf(problem.p) ? "inf" : "2";
   j["h"] = problem.h == DistortionCombiner::kMax ? "max" : "norm";
@@ -44,6 +44,11 @@ void export_subproblem(const std::string& path, const ConvexSubproblem& problem,
   j["X"] = matrix_json(result.X);
   j["objective"] = result.objective;
   j["newton_steps"] = result.newton_steps;
+  if (primal_dual != nullptr) {
+    j["primal_dual"] = {{"X", matrix_json(primal_dual->X)},
+                        {"objective", primal_dual->objective},
+                        {"iterations", primal_dual->newton_steps}};
+  }
   std::ofstream out(path);
   if (!out) throw IoError(path + ": cannot open for writing");
   out << std::setprecision(17) << j.dump();

@@ -8,9 +8,11 @@ A = U D (X D)^+ and the rotations R_j are recomputed here as the polar rotations
 
 Usage: cvxopt_reference.py INSTANCE_DIR   (instances written by export_instances)
 Each instance: meshes[0..1] and ghosts with rest positions V, faces F, slot per vertex; p ("2"/"inf"),
-h ("norm"/"max"), X0 (start, slot 0 held fixed: translation gauge), and the C++ minimiser X and objective.
-Checks: optimal objectives agree to 1e-6 relative; our X is feasible and its objective (evaluated here) is
-optimal to 1e-6; minimisers agree to 1e-4 (p = 2; for p = inf the minimiser is not unique, only reported).
+h ("norm"/"max"), X0 (start, slot 0 held fixed: translation gauge), and the C++ minimiser X and objective, of the
+barrier method and (key "primal_dual", if present) of the primal-dual method.
+Checks, for each of the two C++ solvers: optimal objectives agree to 1e-6 relative; its X is feasible and its
+objective (evaluated here) is optimal to 1e-6; minimisers agree to 1e-4 (p = 2; for p = inf the minimiser is not
+unique, only reported).
 """
 
 import glob
@@ -60,6 +62,11 @@ class Instance:
         self.X0 = np.array(d["X0"])
         self.X_ours = np.array(d["X"])
         self.obj_ours = d["objective"]
+        # (label, X, objective) of every C++ solver in the instance.
+        self.results = [("barrier", self.X_ours, self.obj_ours)]
+        if "primal_dual" in d:
+            pd = d["primal_dual"]
+            self.results.append(("primal-dual", np.array(pd["X"]), pd["objective"]))
         # Ghost vertices carry no energy: their optimal positions are not unique, so minimisers are compared on
         # the slots of the two meshes only.
         self.mesh_slots = sorted(set(d["meshes"][0]["slot"]) | set(d["meshes"][1]["slot"]))
@@ -232,15 +239,17 @@ def main():
         t0 = time.perf_counter()
         obj_ref, X_ref = inst.solve()
         seconds = time.perf_counter() - t0
-        obj_at_ours = inst.objective(inst.X_ours)
-        rel = abs(inst.obj_ours - obj_ref) / abs(obj_ref)
-        rel_eval = abs(obj_at_ours - obj_ref) / abs(obj_ref)
-        dx = np.abs(inst.X_ours[inst.mesh_slots] - X_ref[inst.mesh_slots]).max()
-        ok = rel <= 1e-6 and rel_eval <= 1e-6 and (inst.p_inf or dx <= 1e-4)
-        failures += not ok
-        print("%-28s cvxopt %.12g  ours %.12g  rel %.1e  (evaluated here: rel %.1e)  max|dX| %.1e%s  cvxopt %.1f s  %s" % (
-            inst.name, obj_ref, inst.obj_ours, rel, rel_eval, dx, " (p=inf: not unique)" if inst.p_inf else "",
-            seconds, "ok" if ok else "FAIL"), flush=True)
+        for label, X_ours, obj_ours in inst.results:
+            obj_at_ours = inst.objective(X_ours)
+            rel = abs(obj_ours - obj_ref) / abs(obj_ref)
+            rel_eval = abs(obj_at_ours - obj_ref) / abs(obj_ref)
+            dx = np.abs(X_ours[inst.mesh_slots] - X_ref[inst.mesh_slots]).max()
+            ok = rel <= 1e-6 and rel_eval <= 1e-6 and (inst.p_inf or dx <= 1e-4)
+            failures += not ok
+            print("%-28s %-11s cvxopt %.12g  ours %.12g  rel %.1e  (evaluated here: rel %.1e)  max|dX| %.1e%s  "
+                  "cvxopt %.1f s  %s" % (inst.name, label, obj_ref, obj_ours, rel, rel_eval, dx,
+                                         " (p=inf: not unique)" if inst.p_inf else "", seconds,
+                                         "ok" if ok else "FAIL"), flush=True)
     return 1 if failures else 0
 
 

@@ -11,6 +11,7 @@
 #include "disk_patches.h"
 #include "flatten/barrier_solver.h"
 #include "flatten/joint_flatten.h"
+#include "flatten/primal_dual_solver.h"
 #include "flatten/subproblem_export.h"
 
 int main(int argc, char** argv) {
@@ -53,11 +54,16 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       const BarrierResult r = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol);
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      SparseCholesky chol_pd;
+      const BarrierResult pd = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, BarrierOptions{}, chol_pd);
       const std::string file = (dir / (std::string(ps.name) + "_" + c.name + ".json")).string();
-      export_subproblem(file, jp.subproblem, jp.X0, r);
-      std::printf("%s: %d + %d faces, objective %.12g, gap bound %.1e, %d Newton steps, %.3f s%s\n", file.c_str(),
-                  static_cast<int>(a.F.rows()), static_cast<int>(b.F.rows()), r.objective, r.gap_bound, r.newton_steps,
-                  sec, r.converged ? "" : " (stopped before the 1e-8 gap)");
+      export_subproblem(file, jp.subproblem, jp.X0, r, &pd);
+      std::printf(
+          "%s: %d + %d faces, objective %.12g, gap bound %.1e, %d Newton steps, %.3f s%s; primal-dual %.12g, "
+          "gap %.1e, %d iterations%s\n",
+          file.c_str(), static_cast<int>(a.F.rows()), static_cast<int>(b.F.rows()), r.objective, r.gap_bound,
+          r.newton_steps, sec, r.converged ? "" : " (stopped before the 1e-8 gap)", pd.objective, pd.gap_bound,
+          pd.newton_steps, pd.converged ? "" : " (stopped before the 1e-8 gap)");
     }
   }
   return 0;
