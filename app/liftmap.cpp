@@ -94,7 +94,7 @@ int run_check(const std::vector<std::string>& paths, const std::string& landmark
 /// Inputs and options shared by `map` and `cut`.
 struct PairJob {
   std::string path_a, path_b, landmarks_path, out_dir = "out";
-  std::string p = "2", h = "eq3", tree = "mst";
+  std::string p = "2", h = "eq3", tree = "mst", solver = "auto";
   bool no_normalize = false, quiet = false;
   double tolerance = 1e-3;
   int max_iterations = 10, threads = 0, samples = 2;
@@ -136,6 +136,9 @@ liftmap::MapOptions map_options(const PairJob& job) {
   o.cut.tree = job.tree == "path" ? liftmap::CutOptions::Tree::kPath : liftmap::CutOptions::Tree::kMinimumSpanning;
   o.flatten.p = job.p == "inf" ? std::numeric_limits<double>::infinity() : 2.0;
   o.flatten.h = job.h == "eq2" ? liftmap::DistortionCombiner::kMax : liftmap::DistortionCombiner::kNorm;
+  o.flatten.method = job.solver == "barrier"       ? liftmap::SubproblemSolver::kBarrier
+                     : job.solver == "primal-dual" ? liftmap::SubproblemSolver::kPrimalDual
+                                                   : liftmap::SubproblemSolver::kAuto;
   o.flatten.normalize_area = !job.no_normalize;
   o.flatten.relative_tolerance = job.tolerance;
   o.flatten.max_iterations = job.max_iterations;
@@ -285,6 +288,11 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"eq2", "eq3"}))
       ->capture_default_str();
   map->add_flag("--no-normalize", map_job.no_normalize, "Do not scale both meshes to the same area");
+  map->add_option("--solver", map_job.solver,
+                  "Solver of the convex subproblems: barrier, primal-dual, or auto (barrier for p = 2, primal-dual for "
+                  "p = inf)")
+      ->check(CLI::IsMember({"auto", "barrier", "primal-dual"}))
+      ->capture_default_str();
   map->add_option("--tolerance", map_job.tolerance, "Stop when the energy improves by less than this (relative)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

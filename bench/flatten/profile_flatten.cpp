@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 
 #include "cut/cut_meshes.h"
@@ -41,6 +42,10 @@ int main(int argc, char** argv) {
   if (argc > 4) options.max_iterations = std::atoi(argv[4]);
   if (argc > 5) options.solver.barrier_growth = std::atof(argv[5]);
   if (argc > 6) options.solver.relative_gap = std::atof(argv[6]);
+  if (const char* m = std::getenv("PROFILE_SOLVER"); m != nullptr && std::string(m) == "primal-dual") {
+    options.method = SubproblemSolver::kPrimalDual;
+  }
+  if (std::getenv("PROFILE_P_INF")) options.p = std::numeric_limits<double>::infinity();
   int outer = 1;
   struct Centring {
     int index = -1, steps = 0, damped = 0, repaired = 0;

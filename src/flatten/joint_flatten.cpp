@@ -11,6 +11,7 @@
 #include "flatten/boundary_loop.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
+#include "flatten/primal_dual_solver.h"
 #include "flatten/tutte.h"
 
 namespace liftmap {
@@ -223,12 +224,15 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     if (options.on_iteration) options.on_iteration(0, it);
   }
   SparseCholesky cholesky;
+  const bool primal_dual = options.method == SubproblemSolver::kPrimalDual ||
+                           (options.method == SubproblemSolver::kAuto && std::isinf(options.p));
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const auto t0 = std::chrono::steady_clock::now();
     set_rotations(sp, X);
     BarrierResult br;
     try {
-      br = solve_convex_subproblem(sp, X, options.solver, cholesky);
+      br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, options.solver, cholesky)
+                       : solve_convex_subproblem(sp, X, options.solver, cholesky);
     } catch (const PipelineError& e) {
       // Name the iteration and the distortion it started from: the solver's own message cannot.
       const double start_max = res.iterations.back().max_distortion;

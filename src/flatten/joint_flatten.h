@@ -22,6 +22,18 @@ struct FlatteningDisk {
 
 struct JointFlattenIteration;
 
+/// The solver of the convex subproblems (10).
+enum class SubproblemSolver {
+  /// The barrier method for p = 2, the primal-dual method for p = inf. For p = inf the barrier method needs 166-210
+  /// Newton steps on the 300-face test patches (primal-dual: 27-30 iterations) and fails on camel-cow's first
+  /// subproblem (its Newton step overflows at t ~ 1e127), which the primal-dual method solves in 64 iterations. For
+  /// p = 2 the primal-dual method is about 2.5 times slower on camel-cow (45-67 iterations of ~0.17 s against 53-74
+  /// Newton steps of ~0.065 s).
+  kAuto,
+  kBarrier,     ///< solve_convex_subproblem (barrier_solver.h)
+  kPrimalDual,  ///< solve_convex_subproblem_primal_dual (primal_dual_solver.h)
+};
+
 /// Settings of Algorithm 2; defaults are the paper's.
 struct JointFlattenOptions {
   double p = 2;                                      ///< 2 or std::numeric_limits<double>::infinity()
@@ -34,6 +46,7 @@ struct JointFlattenOptions {
   /// The convex subproblem solver. A certified relative gap of 1e-5 is 100 times finer than the outer tolerance,
   /// and saves the last one or two centrings, which on whole-mesh disks run at the limits of double precision.
   BarrierOptions solver{.relative_gap = 1e-5};
+  SubproblemSolver method = SubproblemSolver::kAuto;
   /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
   /// they happen (progress reporting); empty: not called.
   std::function<void(size_t, const JointFlattenIteration&)> on_iteration = nullptr;
