@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -40,11 +41,10 @@ double sqrt_area(const TriangleMesh& m) {
 }
 
 // The end-to-end invariants of the map on a real pair with seeded random landmarks.
-void expect_valid_map(const TriangleMesh& A, const TriangleMesh& B, int k, unsigned seed) {
+void expect_valid_map(const TriangleMesh& A, const TriangleMesh& B, int k, unsigned seed, MapOptions options = {}) {
   std::mt19937 rng(seed);
   const auto la = random_vertices(static_cast<int>(A.V.rows()), k, rng);
   const auto lb = random_vertices(static_cast<int>(B.V.rows()), k, rng);
-  MapOptions options;
   options.flatten.max_iterations = 3;  // the invariants hold after any number of outer iterations
   const MapResult map = map_meshes(A.V, A.F, B.V, B.F, la, lb, options);
   const MapVerification& v = map.verification;
@@ -94,6 +94,18 @@ TEST(MapMeshes, SpheresWithRandomLandmarks) {
     SCOPED_TRACE("k = " + std::to_string(k));
     expect_valid_map(sphere, ellipsoid, k, 100 + static_cast<unsigned>(k));
   }
+}
+
+// p = inf, which the default solver choice hands to the primal-dual method; and p = 2 forced onto it.
+TEST(MapMeshes, SpheresWithThePrimalDualSolver) {
+  const TriangleMesh sphere = testing::read_demo_mesh("larger_sphere.off");
+  const TriangleMesh ellipsoid = testing::read_demo_mesh("ellipsoid.off");
+  MapOptions inf;
+  inf.flatten.p = std::numeric_limits<double>::infinity();
+  expect_valid_map(sphere, ellipsoid, 6, 106, inf);
+  MapOptions two;
+  two.flatten.method = SubproblemSolver::kPrimalDual;
+  expect_valid_map(sphere, ellipsoid, 6, 106, two);
 }
 
 TEST(MapMeshes, MapFilesRoundTrip) {
