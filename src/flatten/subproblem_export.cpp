@@ -47,7 +47,8 @@ void export_subproblem(const std::string& path, const ConvexSubproblem& problem,
   if (primal_dual != nullptr) {
     j["primal_dual"] = {{"X", matrix_json(primal_dual->X)},
                         {"objective", primal_dual->objective},
-                        {"iterations", primal_dual->newton_steps}};
+                        {"iterations", primal_dual->newton_steps},
+                        {"converged", primal_dual->converged}};
   }
   std::ofstream out(path);
   if (!out) throw IoError(path + ": cannot open for writing");

@@ -11,7 +11,7 @@ namespace liftmap {
 /// Writes a JSON instance: for each of the two meshes and the ghost faces, the rest positions V (#V by 3), faces
 /// F, slot of each vertex and rotation angle of each face; p ("2" or "inf"), h ("norm" or "max"), the start X0,
 /// our minimiser X (#slots by 2; slot 0 is held fixed) and objective; with `primal_dual`, also the primal-dual
-/// solver's minimiser and objective (key "primal_dual": X, objective, iterations).
+/// solver's minimiser and objective (key "primal_dual": X, objective, iterations, converged).
 /// \throw IoError if the file cannot be written.
 void export_subproblem(const std::string& path, const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
                        const BarrierResult& result, const BarrierResult* primal_dual = nullptr);
