@@ -551,24 +551,14 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       corner_rows[static_cast<size_t>(j)].noalias() = fsys.B * (fsys.Pinv * Ry.block<2, 3>(2 * j, 0));
     }
     Eigen::MatrixXd Rt = Rx;
-    for (int j = 0; j < nf; ++j) {
-      const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      for (int r = 0; r < 6; ++r) {
-        const int v = fs.var[static_cast<size_t>(r)];
-        if (v >= 0) Rt.row(v) -= corner_rows[static_cast<size_t>(j)].row(r);
-      }
-    }
+    subtract_corner_rows<3>(s, corner_rows, Rt);
     Dx = cholesky.solve(Rt);
     Dy.resize(2 * nf, 3);
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
     for (int j = 0; j < nf; ++j) {
       const FaceSystem& fsys = sys[static_cast<size_t>(j)];
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      Cols3 dxl = Cols3::Zero();
-      for (int r = 0; r < 6; ++r) {
-        const int v = fs.var[static_cast<size_t>(r)];
-        if (v >= 0) dxl.row(r) = Dx.row(v);
-      }
+      const Cols3 dxl = gather_corners<3>(fs, Dx);
       Dy.block<2, 3>(2 * j, 0).noalias() = fsys.Pinv * (Ry.block<2, 3>(2 * j, 0) - fsys.B.transpose() * dxl);
     }
   };
@@ -718,28 +708,11 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       }
       const auto factor_start = std::chrono::steady_clock::now();
       trace.seconds_derivatives = std::chrono::duration<double>(factor_start - step_start).count();
-      if (cholesky.factorize(pattern.A)) {
-        last_shift = 0;
-      } else {
-        // Rounding in the eliminated blocks of nearly active constraints can make the Schur complement
-        // numerically indefinite late in the solve: shift the diagonal until it factorises. Any positive
-        // definite matrix still gives a descent direction, and the line search keeps the iterate feasible.
-        // The shift is relative to each diagonal entry: the curvatures span many orders of magnitude.
-        const Eigen::VectorXd diag = pattern.A.diagonal();
-        // Start near the shift that worked last time: each attempt is a full factorisation.
-        double shift = std::max(1e-14, 1e-2 * last_shift);
-        bool ok = false;
-        for (; shift < 1e3 && !ok; shift *= 100) {
-          for (int v = 0; v < nv; ++v) pattern.A.coeffRef(v, v) = diag(v) * (1 + shift);
-          ok = cholesky.factorize(pattern.A);
-          if (ok) last_shift = shift;
-        }
-        if (!ok) {
-          // Numerical limit of double precision reached: the iterate is strictly feasible; stop here and let
-          // the caller judge the gap bound.
-          done = true;
-          break;
-        }
+      if (!factorize_with_shift(cholesky, pattern.A, last_shift)) {
+        // Numerical limit of double precision reached: the iterate is strictly feasible; stop here and let the
+        // caller judge the gap bound.
+        done = true;
+        break;
       }
 
       // Newton direction, with the global coupling of (10a) handled on top of P^{-1}.

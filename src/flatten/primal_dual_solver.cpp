@@ -428,24 +428,14 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
           s.faces[static_cast<size_t>(j)].S.transpose() * (fsys.Cq.transpose() * t);
     }
     Eigen::MatrixXd Rt = Rx;
-    for (int j = 0; j < nf; ++j) {
-      const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      for (int r = 0; r < 6; ++r) {
-        const int v = fs.var[static_cast<size_t>(r)];
-        if (v >= 0) Rt.row(v) -= corner_rows[static_cast<size_t>(j)].row(r);
-      }
-    }
+    subtract_corner_rows<NC>(s, corner_rows, Rt);
     Dx = cholesky.solve(Rt);
     Dy.resize(kAux * nf, NC);
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
     for (int j = 0; j < nf; ++j) {
       const FaceSystem& fsys = sys[static_cast<size_t>(j)];
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      Corner dxl = Corner::Zero();
-      for (int r = 0; r < 6; ++r) {
-        const int v = fs.var[static_cast<size_t>(r)];
-        if (v >= 0) dxl.row(r) = Dx.row(v);
-      }
+      const Corner dxl = gather_corners<NC>(fs, Dx);
       // H_yy^-1 (r - H_yq S dx) = R^-1 (R^-T r - Cq S dx)
       const Aux t =
           fsys.R.transpose().template triangularView<Eigen::Lower>().solve(Ry.template block<kAux, NC>(kAux * j, 0));
@@ -776,19 +766,7 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
         }
       }
     }
-    if (cholesky.factorize(pattern.A)) {
-      last_shift = 0;
-    } else {
-      const Eigen::VectorXd diag = pattern.A.diagonal();
-      double shift = std::max(1e-14, 1e-2 * last_shift);
-      bool ok = false;
-      for (; shift < 1e3 && !ok; shift *= 100) {
-        for (int v = 0; v < nv; ++v) pattern.A.coeffRef(v, v) = diag(v) * (1 + shift);
-        ok = cholesky.factorize(pattern.A);
-        if (ok) last_shift = shift;
-      }
-      if (!ok) return false;
-    }
+    if (!factorize_with_shift(cholesky, pattern.A, last_shift)) return false;
     prepare_coupling();
     return true;
   };

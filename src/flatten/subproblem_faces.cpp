@@ -93,4 +93,20 @@ Pattern make_pattern(const Setup& s) {
   return p;
 }
 
+bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift) {
+  if (cholesky.factorize(A)) {
+    last_shift = 0;
+    return true;
+  }
+  const Eigen::VectorXd diag = A.diagonal();
+  for (double shift = std::max(1e-14, 1e-2 * last_shift); shift < 1e3; shift *= 100) {
+    for (Eigen::Index v = 0; v < A.rows(); ++v) A.coeffRef(v, v) = diag(v) * (1 + shift);
+    if (cholesky.factorize(A)) {
+      last_shift = shift;
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace liftmap::subproblem

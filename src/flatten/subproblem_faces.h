@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "flatten/barrier_solver.h"
+#include "flatten/sparse_cholesky.h"
 
 namespace liftmap::subproblem {
 
@@ -65,5 +66,38 @@ struct Pattern {
 };
 /// The lower triangle of the sum of the faces' 6 x 6 corner blocks, over the unknown coordinates.
 Pattern make_pattern(const Setup& s);
+
+/// The rows of a face's six corner coordinates in X (#unknowns by NC); those of the fixed gauge vertex are 0.
+template <int NC>
+Eigen::Matrix<double, 6, NC> gather_corners(const FaceSetup& fs, const Eigen::MatrixXd& X) {
+  Eigen::Matrix<double, 6, NC> out = Eigen::Matrix<double, 6, NC>::Zero();
+  for (int r = 0; r < 6; ++r) {
+    const int v = fs.var[static_cast<size_t>(r)];
+    if (v >= 0) out.row(r) = X.row(v);
+  }
+  return out;
+}
+
+/// X.row(v) -= rows[j].row(r) for every corner coordinate r (unknown v) of every face j; serial, faces share
+/// vertices.
+template <int NC>
+void subtract_corner_rows(const Setup& s, const std::vector<Eigen::Matrix<double, 6, NC>>& rows, Eigen::MatrixXd& X) {
+  for (int j = 0; j < s.n_faces; ++j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    for (int r = 0; r < 6; ++r) {
+      const int v = fs.var[static_cast<size_t>(r)];
+      if (v >= 0) X.row(v) -= rows[static_cast<size_t>(j)].row(r);
+    }
+  }
+}
+
+/// Factorises the Schur system A. Rounding in the eliminated blocks of nearly active constraints can make it
+/// numerically indefinite late in a solve: then its diagonal is shifted, relative to each entry (the curvatures span
+/// many orders of magnitude), by 1e-2 times the shift that worked last time (at least 1e-14), growing 100-fold per
+/// attempt (each a full factorisation). Any positive definite matrix still gives a descent direction, and the
+/// solvers' steps keep the iterate feasible. Leaves A shifted if it was.
+/// \param last_shift in: the last successful shift (0: none needed); out: this one's
+/// \return false if no shift below 1e3 makes it factorise (the limit of double precision).
+bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift);
 
 }  // namespace liftmap::subproblem

@@ -131,4 +131,12 @@ std::pair<TestDisk, TestDisk> punctured_pair(const std::string& a, const std::st
   return {std::move(da), make_disk(Vb, Fb, hb, true)};
 }
 
+JointFlattenProblem camel_cow_patch_problem(const Combo& combo) {
+  const auto [a, b] = patch_pair("camel.off", "cow.off", 300, 0, 500);
+  JointFlattenOptions opt;
+  opt.p = combo.p;
+  opt.h = combo.h;
+  return make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+}
+
 }  // namespace liftmap::testing

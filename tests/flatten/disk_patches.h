@@ -2,6 +2,8 @@
 /// Disk-shaped test inputs for the flattening stage, cut from the real meshes without the cut stage.
 
 #include <Eigen/Core>
+#include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,5 +48,21 @@ std::pair<TestDisk, TestDisk> patch_pair(const std::string& a, const std::string
 /// Two closed meshes each minus a small disk of faces (`hole_faces` on a; on b, grown until the boundary vertex
 /// counts agree).
 std::pair<TestDisk, TestDisk> punctured_pair(const std::string& a, const std::string& b, int hole_faces);
+
+/// One of the four (p, h) settings of problem (10), with a name for parametrised tests.
+struct Combo {
+  double p;
+  DistortionCombiner h;
+  const char* name;
+};
+
+inline constexpr std::array<Combo, 4> kAllCombos{
+    Combo{2, DistortionCombiner::kNorm, "p2_norm"}, Combo{2, DistortionCombiner::kMax, "p2_max"},
+    Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kNorm, "pinf_norm"},
+    Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kMax, "pinf_max"}};
+
+/// The first subproblem (10) of a camel-cow patch pair (300 faces each) with the setting's p and h: the instance of the
+/// solver tests.
+JointFlattenProblem camel_cow_patch_problem(const Combo& combo);
 
 }  // namespace liftmap::testing

@@ -33,19 +33,9 @@ int main(int argc, char** argv) {
   const PairSpec pairs[] = {{"camel_cow", "camel.off", "cow.off", 100, 0, 500},
                             {"bull_dino", "bull.off", "dino.off", 80, 10, 100},
                             {"man_elephant", "man.off", "elephant.off", 120, 2000, 30}};
-  struct Combo {
-    double p;
-    DistortionCombiner h;
-    const char* name;
-  };
-  const double inf = std::numeric_limits<double>::infinity();
-  const Combo combos[] = {{2, DistortionCombiner::kNorm, "p2_norm"},
-                          {2, DistortionCombiner::kMax, "p2_max"},
-                          {inf, DistortionCombiner::kNorm, "pinf_norm"},
-                          {inf, DistortionCombiner::kMax, "pinf_max"}};
   for (const PairSpec& ps : pairs) {
     const auto [a, b] = testing::patch_pair(ps.a, ps.b, ps.faces, ps.seed_a, ps.seed_b);
-    for (const Combo& c : combos) {
+    for (const testing::Combo& c : testing::kAllCombos) {
       JointFlattenOptions opt;
       opt.p = c.p;
       opt.h = c.h;

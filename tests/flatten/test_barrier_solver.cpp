@@ -41,21 +41,13 @@ TEST(flatten_sparse_cholesky, FactorisesAndLeavesOtherParallelRegionsTheirThread
   EXPECT_EQ(team, omp_get_max_threads());
 }
 
-struct Combo {
-  double p;
-  DistortionCombiner h;
-  const char* name;
-};
+using testing::Combo;
 
 class flatten_barrier : public ::testing::TestWithParam<Combo> {};
 
 TEST_P(flatten_barrier, SolvesFirstSubproblemToOptimality) {
   const Combo combo = GetParam();
-  const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 300, 0, 500);
-  JointFlattenOptions opt;
-  opt.p = combo.p;
-  opt.h = combo.h;
-  const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+  const JointFlattenProblem jp = testing::camel_cow_patch_problem(combo);
   SparseCholesky chol;
   const BarrierResult r = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol);
   const double f0 = subproblem_objective(jp.subproblem, jp.X0);
@@ -110,12 +102,8 @@ TEST(flatten_barrier, WholeMeshSubproblemCertificateHolds) {
   EXPECT_GE(again.objective, r.objective - r.gap_bound - 1e-12 * r.objective);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllCombos, flatten_barrier,
-    ::testing::Values(Combo{2, DistortionCombiner::kNorm, "p2_norm"}, Combo{2, DistortionCombiner::kMax, "p2_max"},
-                      Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kNorm, "pinf_norm"},
-                      Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kMax, "pinf_max"}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(AllCombos, flatten_barrier, ::testing::ValuesIn(testing::kAllCombos),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace liftmap

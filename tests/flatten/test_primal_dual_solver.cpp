@@ -17,11 +17,7 @@
 namespace liftmap {
 namespace {
 
-struct Combo {
-  double p;
-  DistortionCombiner h;
-  const char* name;
-};
+using testing::Combo;
 
 // The gap the primal-dual method certifies on these instances: its last iterations reach the limit of double
 // precision near a relative gap of 2e-7 for p = 2 (slacks of nearly active cones below 1e-10).
@@ -35,11 +31,7 @@ class flatten_primal_dual : public ::testing::TestWithParam<Combo> {};
 // perturbation improves on.
 TEST_P(flatten_primal_dual, AgreesWithTheBarrierMethod) {
   const Combo combo = GetParam();
-  const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 300, 0, 500);
-  JointFlattenOptions opt;
-  opt.p = combo.p;
-  opt.h = combo.h;
-  const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+  const JointFlattenProblem jp = testing::camel_cow_patch_problem(combo);
   SparseCholesky chol_b, chol_p;
   const BarrierResult rb = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol_b);
   BarrierOptions po{.relative_gap = kGap};
@@ -77,12 +69,8 @@ TEST_P(flatten_primal_dual, AgreesWithTheBarrierMethod) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllCombos, flatten_primal_dual,
-    ::testing::Values(Combo{2, DistortionCombiner::kNorm, "p2_norm"}, Combo{2, DistortionCombiner::kMax, "p2_max"},
-                      Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kNorm, "pinf_norm"},
-                      Combo{std::numeric_limits<double>::infinity(), DistortionCombiner::kMax, "pinf_max"}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(AllCombos, flatten_primal_dual, ::testing::ValuesIn(testing::kAllCombos),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 // A whole mesh minus a small disk, p = inf: the Tutte start has slivers (distortion in the thousands). The barrier
 // method ran out of its 400 Newton steps on this instance at 313.8, uncertified (primal-dual: 13.79, 37 iterations).
