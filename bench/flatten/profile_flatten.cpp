@@ -2,6 +2,8 @@
 // flattening and prints, per outer iteration, every centring of the barrier method: its barrier parameter, Newton
 // steps, damped steps, repaired steps, and time. This is where bench/RESULTS.md's "where the time goes" comes from.
 // Usage: profile_flatten A.off B.off landmarks.txt [max_outer_iterations [barrier_growth [relative_gap]]]
+// Environment: PROFILE_STEPS=1 prints every step; PROFILE_SOLVER=primal-dual uses the primal-dual solver (a "centring"
+// line is then one of its iterations, with t = 1 / mu); PROFILE_P_INF=1 solves for p = inf.
 
 #include <chrono>
 #include <cstdio>

@@ -180,6 +180,11 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
   return jp;
 }
 
+bool uses_primal_dual(const JointFlattenOptions& options) {
+  return options.method == SubproblemSolver::kPrimalDual ||
+         (options.method == SubproblemSolver::kAuto && std::isinf(options.p));
+}
+
 JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& n, const JointFlattenOptions& options) {
   JointFlattenProblem jp = make_joint_flatten_problem(m, n, options);
   ConvexSubproblem& sp = jp.subproblem;
@@ -224,8 +229,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     if (options.on_iteration) options.on_iteration(0, it);
   }
   SparseCholesky cholesky;
-  const bool primal_dual = options.method == SubproblemSolver::kPrimalDual ||
-                           (options.method == SubproblemSolver::kAuto && std::isinf(options.p));
+  const bool primal_dual = uses_primal_dual(options);
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const auto t0 = std::chrono::steady_clock::now();
     set_rotations(sp, X);

@@ -25,10 +25,10 @@ struct JointFlattenIteration;
 /// The solver of the convex subproblems (10).
 enum class SubproblemSolver {
   /// The barrier method for p = 2, the primal-dual method for p = inf. For p = inf the barrier method needs 166-210
-  /// Newton steps on the 300-face test patches (primal-dual: 27-30 iterations) and fails on camel-cow's first
+  /// Newton steps on the 300-face test patches (primal-dual: 24-30 iterations) and fails on camel-cow's first
   /// subproblem (its Newton step overflows at t ~ 1e127), which the primal-dual method solves in 64 iterations. For
-  /// p = 2 the primal-dual method is about 2.5 times slower on camel-cow (45-67 iterations of ~0.17 s against 53-74
-  /// Newton steps of ~0.065 s).
+  /// p = 2 the primal-dual method is about 2.5 times slower on camel-cow (42-67 iterations of 0.15-0.18 s against
+  /// 53-74 Newton steps of ~0.065 s).
   kAuto,
   kBarrier,     ///< solve_convex_subproblem (barrier_solver.h)
   kPrimalDual,  ///< solve_convex_subproblem_primal_dual (primal_dual_solver.h)
@@ -51,6 +51,9 @@ struct JointFlattenOptions {
   /// they happen (progress reporting); empty: not called.
   std::function<void(size_t, const JointFlattenIteration&)> on_iteration = nullptr;
 };
+
+/// Whether joint_flatten solves its subproblems with the primal-dual method (else the barrier method).
+[[nodiscard]] bool uses_primal_dual(const JointFlattenOptions& options);
 
 /// Statistics of one iterate (index 0: the Tutte start).
 struct JointFlattenIteration {

@@ -81,6 +81,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
   j["options"] = {
       {"p", std::isinf(options.flatten.p) ? nlohmann::json("inf") : nlohmann::json(options.flatten.p)},
       {"h", options.flatten.h == DistortionCombiner::kNorm ? "eq3" : "eq2"},
+      {"solver", uses_primal_dual(options.flatten) ? "primal-dual" : "barrier"},
       {"normalize_area", options.flatten.normalize_area},
       {"relative_tolerance", options.flatten.relative_tolerance},
       {"max_iterations", options.flatten.max_iterations},

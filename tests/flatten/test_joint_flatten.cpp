@@ -80,6 +80,18 @@ TEST(flatten_joint, InfinityNormPatches) {
   check_pair(a, b, opt);
 }
 
+TEST(flatten_joint, AutoSolverIsBarrierForTwoNormAndPrimalDualForInfinityNorm) {
+  JointFlattenOptions opt;
+  EXPECT_FALSE(uses_primal_dual(opt));
+  opt.p = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(uses_primal_dual(opt));
+  opt.method = SubproblemSolver::kBarrier;
+  EXPECT_FALSE(uses_primal_dual(opt));
+  opt.p = 2;
+  opt.method = SubproblemSolver::kPrimalDual;
+  EXPECT_TRUE(uses_primal_dual(opt));
+}
+
 TEST(flatten_joint, RejectsMismatchedBoundaries) {
   const testing::TestDisk a = testing::mesh_patch("cow.off", 0, 200);
   const testing::TestDisk b = testing::mesh_patch("cow.off", 900, 400);
