@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
@@ -44,6 +45,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kStepFraction = 0.99;
 /// Steps below this length, twice in a row, end the method (precision limit).
 constexpr double kShortStep = 1e-3;
+/// Iterations over which the method must make progress: halve the gap, or move the objective by a tenth of the
+/// requested gap. Near the limit of double precision, short steps alternate with longer ones that go nowhere.
+constexpr int kProgressWindow = 5;
 /// Largest dual residual |A^T z - c|_inf of a solution (CVXOPT's default feasibility tolerance).
 constexpr double kDualTolerance = 1e-7;
 
@@ -770,6 +774,7 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
   };
 
   int short_steps = 0;
+  std::vector<std::pair<double, double>> history;  // (gap, objective) at the start of every iteration
   for (int iter = 0; iter < options.max_newton_steps; ++iter) {
     const auto step_start = std::chrono::steady_clock::now();
     BarrierStep trace;
@@ -798,6 +803,15 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     if (gap <= options.relative_gap * f0 && dres <= kDualTolerance) {
       result.converged = true;
       break;
+    }
+    // No progress over the window: stop at this strictly feasible iterate, uncertified (precision limit).
+    history.push_back({gap, f0});
+    if (history.size() > kProgressWindow) {
+      const auto [gap_then, f0_then] = history[history.size() - 1 - kProgressWindow];
+      if (gap > 0.5 * gap_then && std::abs(f0 - f0_then) <= 0.1 * options.relative_gap * f0) {
+        result.stalled_centrings = 1;
+        break;
+      }
     }
 
     const auto factor_start = std::chrono::steady_clock::now();

@@ -93,5 +93,31 @@ TEST(flatten_primal_dual, WholeMeshInfinityNorm) {
   }
 }
 
+// A gap no double-precision iterate can certify: the method must notice that it stopped making progress (steps too
+// short, or a gap that no longer shrinks while the objective stands still) and return its strictly feasible iterate
+// uncertified, at the certified optimum's objective, instead of spending its whole iteration budget.
+TEST(flatten_primal_dual, StopsAtThePrecisionLimit) {
+  const auto [a, bb] = testing::punctured_pair("hand.off", "hand.off", 12);
+  const testing::TestDisk b = testing::deformed_copy(bb);
+  JointFlattenOptions opt;
+  opt.p = std::numeric_limits<double>::infinity();
+  const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+  SparseCholesky chol;
+  const BarrierResult certified = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, opt.solver, chol);
+  ASSERT_TRUE(certified.converged);
+  BarrierOptions unreachable = opt.solver;
+  unreachable.relative_gap = 1e-15;
+  const BarrierResult r = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, unreachable, chol);
+  std::printf("certified %.10g in %d iterations; gap 1e-15 requested: %.10g in %d iterations (gap %.2g)\n",
+              certified.objective, certified.newton_steps, r.objective, r.newton_steps, r.gap_bound);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.stalled_centrings, 1);
+  EXPECT_LT(r.newton_steps, certified.newton_steps + 30);
+  EXPECT_NEAR(r.objective, certified.objective, 2 * opt.solver.relative_gap * certified.objective);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_GT(signed_double_areas(jp.F[k], mesh_positions(jp.subproblem, k, r.X)).minCoeff(), 0);
+  }
+}
+
 }  // namespace
 }  // namespace liftmap
