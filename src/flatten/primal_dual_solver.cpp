@@ -455,11 +455,11 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     Eigen::VectorXd dx, dy;
     std::array<double, 2> dT{};
   };
-  // The coupling columns of the T_m (p = inf: H's blocks between T_m and the positions and auxiliaries; p = 2: u_m)
-  // and P^-1 applied to them, once per iteration (prepare_coupling), and the 2 x 2 systems built from them.
+  // The coupling columns of the T_m (p = inf: H's blocks between T_m and the positions and auxiliaries; p = 2: u_m),
+  // P^-1 applied to them (solved together with the predictor's right-hand side), and the 2 x 2 systems built from them.
   Eigen::MatrixXd Cx, Cy, Dcx, Dcy;
   Eigen::Matrix2d G, Minv, GM, Sc;
-  auto prepare_coupling = [&] {
+  auto coupling_columns = [&] {
     Cx.setZero(nv, 2);
     Cy.setZero(kAux * nf, 2);
     for (int j = 0; j < nf; ++j) {
@@ -481,7 +481,9 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
         }
       }
     }
-    apply_pinv.template operator()<2>(Cx, Cy, Dcx, Dcy);
+  };
+  // Once Dcx, Dcy = P^-1 (Cx, Cy) are known.
+  auto finish_coupling = [&] {
     G = Cx.transpose() * Dcx + Cy.transpose() * Dcy;
     G = 0.5 * (G + G.transpose());
     if (st.p_inf) {
@@ -503,13 +505,11 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     }
   };
 
-  // Solves H dx = r for the right-hand side r = (rx, ry, r_t) (positions, auxiliaries, T_m).
-  auto solve = [&](const Eigen::VectorXd& rx, const Eigen::VectorXd& ry, const std::array<double, 2>& r_t) {
-    Eigen::MatrixXd Dx, Dy;
-    apply_pinv.template operator()<1>(rx, ry, Dx, Dy);
+  // Solves H dx = r for the right-hand side r = (rx, ry, r_t) (positions, auxiliaries, T_m), given P^-1 (rx, ry).
+  auto finish_solve = [&](Eigen::VectorXd pinv_rx, Eigen::VectorXd pinv_ry, const std::array<double, 2>& r_t) {
     Direction d;
-    d.dx = Dx.col(0);
-    d.dy = Dy.col(0);
+    d.dx = std::move(pinv_rx);
+    d.dy = std::move(pinv_ry);
     const Eigen::Vector2d ctd = Cx.transpose() * d.dx + Cy.transpose() * d.dy;  // C^T P^-1 r
     if (st.p_inf) {
       const Eigen::Vector2d sol = Sc.ldlt().solve(Eigen::Vector2d(r_t[0], r_t[1]) - ctd);
@@ -529,6 +529,11 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
       throw PipelineError("convex subproblem: the primal-dual step is not finite");
     }
     return d;
+  };
+  auto solve = [&](const Eigen::VectorXd& rx, const Eigen::VectorXd& ry, const std::array<double, 2>& r_t) {
+    Eigen::MatrixXd Dx, Dy;
+    apply_pinv.template operator()<1>(rx, ry, Dx, Dy);
+    return finish_solve(Dx.col(0), Dy.col(0), r_t);
   };
 
   // Local direction of face j.
@@ -602,46 +607,66 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
   };
 
   // A^T applied to per-cone vectors Z (faces) and Z_obj (objective cones): (rx, ry, r_t) on the positions, the
-  // auxiliaries and the T_m. Unused auxiliaries (which appear in no cone) get 0.
+  // auxiliaries and the T_m. Unused auxiliaries (which appear in no cone) get 0. If z_max is given, it also gets the
+  // largest entry of |A|^T |Z| over the positions and auxiliaries (the size of the terms that A^T Z sums), from the
+  // same pass over the faces.
   auto adjoint = [&](const Eigen::Matrix<double, kRows, Eigen::Dynamic>& Z, const std::array<Eigen::VectorXd, 2>& Z_obj,
-                     Eigen::VectorXd& rx, Eigen::VectorXd& ry, std::array<double, 2>& r_t, bool magnitude = false) {
+                     Eigen::VectorXd& rx, Eigen::VectorXd& ry, std::array<double, 2>& r_t, double* z_max = nullptr) {
+    const bool magnitude = z_max != nullptr;
     rx.setZero(nv);
     ry.setZero(kAux * nf);
     r_t = {0, 0};
-    std::vector<VecL> g(static_cast<size_t>(nf));
+    Eigen::VectorXd mx, my;
+    if (magnitude) {
+      mx.setZero(nv);
+      my.setZero(kAux * nf);
+    }
+    std::vector<VecL> g(static_cast<size_t>(nf)), gm(magnitude ? static_cast<size_t>(nf) : 0);
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
     for (int j = 0; j < nf; ++j) {
       const FaceCones& fc = cones[static_cast<size_t>(j)];
-      VecL gl = VecL::Zero();
+      VecL gl = VecL::Zero(), gml = VecL::Zero();
       for (int k = 0; k < fc.n; ++k) {
         const Cone& cone = fc.cone[static_cast<size_t>(k)];
-        const Eigen::Vector4d gk =
-            magnitude ? Eigen::Vector4d(cone.A.topRows(cone.dim).cwiseAbs().transpose() *
-                                        Z.col(j).segment(3 * k, cone.dim).cwiseAbs())
-                      : Eigen::Vector4d(cone.A.topRows(cone.dim).transpose() * Z.col(j).segment(3 * k, cone.dim));
+        const auto zk = Z.col(j).segment(3 * k, cone.dim);
+        const Eigen::Vector4d gk = cone.A.topRows(cone.dim).transpose() * zk;
         for (int a = 0; a < cone.n; ++a) gl(cone.var[static_cast<size_t>(a)]) += gk(a);
+        if (magnitude) {
+          const Eigen::Vector4d gmk = cone.A.topRows(cone.dim).cwiseAbs().transpose() * zk.cwiseAbs();
+          for (int a = 0; a < cone.n; ++a) gml(cone.var[static_cast<size_t>(a)]) += gmk(a);
+        }
       }
       g[static_cast<size_t>(j)] = gl;
+      if (magnitude) gm[static_cast<size_t>(j)] = gml;
     }
     for (int j = 0; j < nf; ++j) {
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
       const VecL& gl = g[static_cast<size_t>(j)];
-      const Vec6 gu =
-          magnitude ? Vec6(fs.S.cwiseAbs().transpose() * gl.head<4>()) : Vec6(fs.S.transpose() * gl.head<4>());
+      const Vec6 gu = fs.S.transpose() * gl.head<4>();
       for (int r = 0; r < 6; ++r) {
         const int v = fs.var[static_cast<size_t>(r)];
         if (v >= 0) rx(v) += gu(r);
       }
       ry.segment<kAux>(kAux * j) = gl.segment<kAux>(kC);
       if (!fs.ghost()) r_t[static_cast<size_t>(fs.mesh)] += gl(kT);
+      if (magnitude) {
+        const VecL& gml = gm[static_cast<size_t>(j)];
+        const Vec6 gmu = fs.S.cwiseAbs().transpose() * gml.head<4>();
+        for (int r = 0; r < 6; ++r) {
+          const int v = fs.var[static_cast<size_t>(r)];
+          if (v >= 0) mx(v) += gmu(r);
+        }
+        my.segment<kAux>(kAux * j) = gml.segment<kAux>(kC);
+      }
     }
     if (!st.p_inf) {
       for (size_t m = 0; m < 2; ++m) {
         const ObjectiveCone& oc = obj[m];
         r_t[m] += Z_obj[m](0);
         for (size_t i = 0; i < oc.faces.size(); ++i) {
-          ry(kAux * oc.faces[i] + 3) +=
-              oc.sqrt_w(static_cast<Eigen::Index>(i)) * Z_obj[m](static_cast<Eigen::Index>(i) + 1);
+          const double wz = oc.sqrt_w(static_cast<Eigen::Index>(i)) * Z_obj[m](static_cast<Eigen::Index>(i) + 1);
+          ry(kAux * oc.faces[i] + 3) += wz;
+          if (magnitude) my(kAux * oc.faces[i] + 3) += std::abs(wz);
         }
       }
     }
@@ -650,7 +675,12 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
       if (fs.ghost()) ry.segment<3>(kAux * j + 1).setZero();
       if (st.p_inf) ry(kAux * j + 3) = 0;
       if (st.h_max) ry.segment<2>(kAux * j + 1).setZero();
+      if (!magnitude) continue;
+      if (fs.ghost()) my.segment<3>(kAux * j + 1).setZero();
+      if (st.p_inf) my(kAux * j + 3) = 0;
+      if (st.h_max) my.segment<2>(kAux * j + 1).setZero();
     }
+    if (magnitude) *z_max = std::max(mx.lpNorm<Eigen::Infinity>(), my.lpNorm<Eigen::Infinity>());
   };
 
   // The scalings of every cone at (S, z) and the Newton system's per-face pieces; returns the gap s^T z.
@@ -751,8 +781,8 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     return gap;
   };
 
-  // Assembles the Schur system in the vertex coordinates, factorises it (with a relative diagonal shift if rounding
-  // made it indefinite) and prepares the coupling of the T_m; false if no shift made it factorise.
+  // Assembles the Schur system in the vertex coordinates and factorises it (with a relative diagonal shift if rounding
+  // made it indefinite); false if no shift made it factorise.
   auto factor_system = [&] {
     // p = inf: the T couplings were taken before the elimination; they are the plain blocks of H (the bordered solve
     // eliminates through P^-1, which includes the auxiliaries).
@@ -768,9 +798,7 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
         }
       }
     }
-    if (!factorize_with_shift(cholesky, pattern.A, last_shift)) return false;
-    prepare_coupling();
-    return true;
+    return factorize_with_shift(cholesky, pattern.A, last_shift);
   };
 
   int short_steps = 0;
@@ -784,15 +812,12 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     // Dual residual A^T z - c (0 at a dual feasible point).
     Eigen::VectorXd res_x, res_y;
     std::array<double, 2> res_t{};
-    adjoint(it.z, it.z_obj, res_x, res_y, res_t);
-    res_t[0] -= 1;
-    res_t[1] -= 1;
     // Relative to the dual variables' size: the residual in a vertex's coordinates is a sum of terms of the size of
     // its faces' z, up to ~1e6 on slivers, and cancels to ~1e-10 of them at best.
-    Eigen::VectorXd mag_x, mag_y;
-    std::array<double, 2> mag_t{};
-    adjoint(it.z, it.z_obj, mag_x, mag_y, mag_t, true);
-    const double z_max = std::max(mag_x.lpNorm<Eigen::Infinity>(), mag_y.lpNorm<Eigen::Infinity>());
+    double z_max = 0;
+    adjoint(it.z, it.z_obj, res_x, res_y, res_t, &z_max);
+    res_t[0] -= 1;
+    res_t[1] -= 1;
     const double dres = std::max({res_x.lpNorm<Eigen::Infinity>(), res_y.lpNorm<Eigen::Infinity>(), std::abs(res_t[0]),
                                   std::abs(res_t[1])}) /
                         std::max(1.0, z_max);
@@ -872,11 +897,24 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     Eigen::Matrix<double, kRows, Eigen::Dynamic> U;
     std::array<Eigen::VectorXd, 2> U_obj;
     rhs(Xi, Xi_obj, rx, ry, r_t, U, U_obj);
-    const Direction d_aff = solve(rx, ry, r_t);
+    // One solve with P for the coupling columns and the predictor's right-hand side.
+    coupling_columns();
+    Direction d_aff;
+    {
+      Eigen::MatrixXd Rx(nv, 3), Ry(kAux * nf, 3), Dx, Dy;
+      Rx << Cx, rx;
+      Ry << Cy, ry;
+      apply_pinv.template operator()<3>(Rx, Ry, Dx, Dy);
+      Dcx = Dx.leftCols<2>();
+      Dcy = Dy.leftCols<2>();
+      finish_coupling();
+      d_aff = finish_solve(Dx.col(2), Dy.col(2), r_t);
+    }
     Scaled sc_aff;
     const double a_aff = std::min(1.0, step_of(d_aff, U, U_obj, sc_aff));
     const double sigma = std::pow(1 - a_aff, 3);
     // Corrector: xi = sigma mu e - ds~_a o dz~_a.
+#pragma omp parallel for schedule(static) if (nf > kParallelFaces)
     for (int j = 0; j < nf; ++j) {
       const FaceCones& fc = cones[static_cast<size_t>(j)];
       for (int k = 0; k < fc.n; ++k) {

@@ -94,10 +94,7 @@ Pattern make_pattern(const Setup& s) {
 }
 
 bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift) {
-  if (cholesky.factorize(A)) {
-    last_shift = 0;
-    return true;
-  }
+  if (last_shift == 0 && cholesky.factorize(A)) return true;
   const Eigen::VectorXd diag = A.diagonal();
   for (double shift = std::max(1e-14, 1e-2 * last_shift); shift < 1e3; shift *= 100) {
     for (Eigen::Index v = 0; v < A.rows(); ++v) A.coeffRef(v, v) = diag(v) * (1 + shift);

@@ -96,7 +96,10 @@ void subtract_corner_rows(const Setup& s, const std::vector<Eigen::Matrix<double
 /// many orders of magnitude), by 1e-2 times the shift that worked last time (at least 1e-14), growing 100-fold per
 /// attempt (each a full factorisation). Any positive definite matrix still gives a descent direction, and the
 /// solvers' steps keep the iterate feasible. Leaves A shifted if it was.
-/// \param last_shift in: the last successful shift (0: none needed); out: this one's
+/// Once a solve has needed a shift, the unshifted attempt is skipped: the systems stay indefinite from then on (the
+/// primal-dual method on camel-cow with --p inf: 44 of 57 iterations needed a shift, each after a failed unshifted
+/// factorisation), and the floor of 1e-14 relative is below the factorisation's own rounding.
+/// \param last_shift in: the last successful shift (0: none needed so far); out: this one's
 /// \return false if no shift below 1e3 makes it factorise (the limit of double precision).
 bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift);
 
