@@ -509,6 +509,31 @@ class Bench:
                         "", "```", out.strip(), "```", ""]
         except TimedOut as e:
             self.md += [f"Not finished: {e}.", ""]
+            return
+        # The same outer iteration with the primal-dual solver (src/flatten/primal_dual_solver.cpp), for p = 2 and for
+        # p = inf (liftmap map's default solver there: the barrier method cannot do p = inf on whole meshes).
+        rows = [("barrier (p = 2 default)", "2", out)]
+        for label, env_extra in (("primal-dual", {"PROFILE_SOLVER": "primal-dual"}),
+                                 ("primal-dual (p = inf default)", {"PROFILE_SOLVER": "primal-dual",
+                                                                    "PROFILE_P_INF": "1"})):
+            self.log(f"profile_flatten, {label}")
+            try:
+                _, _, _, o, _ = run_cmd([exe, a, b, lm, "1"], self.budget.left(), env={**os.environ, **env_extra})
+            except TimedOut as e:
+                o = f"not finished: {e}"
+            rows.append((label, "inf" if "PROFILE_P_INF" in env_extra else "2", o))
+        self.md += ["The same outer iteration with each subproblem solver, one run after the other "
+                    "(`PROFILE_SOLVER=primal-dual`, `PROFILE_P_INF=1`):", "",
+                    "| solver | p | energy after | iterations (Newton steps) | seconds | s per iteration |",
+                    "|---|---|---|---|---|---|"]
+        for label, pv, o in rows:
+            m = re.search(r"^iterate 1: energy (\S+)\s+max distortion \S+\s+Newton steps (\d+)\s+(\S+) s", o, re.M)
+            if m:
+                n, sec = int(m.group(2)), float(m.group(3))
+                self.md.append(f"| {label} | {pv} | {m.group(1)} | {n} | {sec:.2f} | {sec / max(n, 1):.3f} |")
+            else:
+                self.md.append(f"| {label} | {pv} | {o.strip().splitlines()[-1] if o.strip() else 'no output'} | | | |")
+        self.md.append("")
 
     # ---- 3. scaling -------------------------------------------------------------------------------------
     def scaling(self):
