@@ -72,19 +72,25 @@ TEST_P(flatten_primal_dual, AgreesWithTheBarrierMethod) {
 INSTANTIATE_TEST_SUITE_P(AllCombos, flatten_primal_dual, ::testing::ValuesIn(testing::kAllCombos),
                          [](const auto& info) { return std::string(info.param.name); });
 
-// A whole mesh minus a small disk, p = inf: the Tutte start has slivers (distortion in the thousands). The barrier
-// method ran out of its 400 Newton steps on this instance at 313.8, uncertified (primal-dual: 13.79, 37 iterations).
-TEST(flatten_primal_dual, WholeMeshInfinityNorm) {
+// A whole mesh minus a small disk and a deformed copy of it, p = inf (opt's p is set).
+JointFlattenProblem punctured_hand_problem(JointFlattenOptions& opt) {
   const auto [a, bb] = testing::punctured_pair("hand.off", "hand.off", 12);
   const testing::TestDisk b = testing::deformed_copy(bb);
-  JointFlattenOptions opt;
   opt.p = std::numeric_limits<double>::infinity();
-  const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+  return make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+}
+
+// The punctured hand: the Tutte start has slivers (distortion in the thousands). The barrier method ran out of its
+// 400 Newton steps on this instance at 313.8, uncertified (primal-dual: 13.79, 37 iterations).
+TEST(flatten_primal_dual, WholeMeshInfinityNorm) {
+  JointFlattenOptions opt;
+  const JointFlattenProblem jp = punctured_hand_problem(opt);
+  const int faces_a = static_cast<int>(jp.F[0].rows()), faces_b = static_cast<int>(jp.F[1].rows());
   SparseCholesky chol_p;
   const BarrierResult rp = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, opt.solver, chol_p);
   const double f0 = subproblem_objective(jp.subproblem, jp.X0);
-  std::printf("%d + %d faces: start %.8g, primal-dual %.8g (gap %.2g, %d iterations)\n", static_cast<int>(a.F.rows()),
-              static_cast<int>(b.F.rows()), f0, rp.objective, rp.gap_bound, rp.newton_steps);
+  std::printf("%d + %d faces: start %.8g, primal-dual %.8g (gap %.2g, %d iterations)\n", faces_a, faces_b, f0,
+              rp.objective, rp.gap_bound, rp.newton_steps);
   ASSERT_TRUE(rp.converged);
   EXPECT_LT(rp.objective, f0);
   EXPECT_LE(rp.gap_bound, opt.solver.relative_gap * rp.objective);
@@ -97,11 +103,8 @@ TEST(flatten_primal_dual, WholeMeshInfinityNorm) {
 // short, or a gap that no longer shrinks while the objective stands still) and return its strictly feasible iterate
 // uncertified, at the certified optimum's objective, instead of spending its whole iteration budget.
 TEST(flatten_primal_dual, StopsAtThePrecisionLimit) {
-  const auto [a, bb] = testing::punctured_pair("hand.off", "hand.off", 12);
-  const testing::TestDisk b = testing::deformed_copy(bb);
   JointFlattenOptions opt;
-  opt.p = std::numeric_limits<double>::infinity();
-  const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
+  const JointFlattenProblem jp = punctured_hand_problem(opt);
   SparseCholesky chol;
   const BarrierResult certified = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, opt.solver, chol);
   ASSERT_TRUE(certified.converged);
