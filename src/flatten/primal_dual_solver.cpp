@@ -670,17 +670,18 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
         }
       }
     }
-    for (int j = 0; j < nf; ++j) {
-      const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      if (fs.ghost()) ry.segment<3>(kAux * j + 1).setZero();
-      if (st.p_inf) ry(kAux * j + 3) = 0;
-      if (st.h_max) ry.segment<2>(kAux * j + 1).setZero();
-      if (!magnitude) continue;
-      if (fs.ghost()) my.segment<3>(kAux * j + 1).setZero();
-      if (st.p_inf) my(kAux * j + 3) = 0;
-      if (st.h_max) my.segment<2>(kAux * j + 1).setZero();
+    auto zero_unused = [&](Eigen::VectorXd& y) {
+      for (int j = 0; j < nf; ++j) {
+        if (s.faces[static_cast<size_t>(j)].ghost()) y.segment<3>(kAux * j + 1).setZero();
+        if (st.p_inf) y(kAux * j + 3) = 0;
+        if (st.h_max) y.segment<2>(kAux * j + 1).setZero();
+      }
+    };
+    zero_unused(ry);
+    if (magnitude) {
+      zero_unused(my);
+      *z_max = std::max(mx.lpNorm<Eigen::Infinity>(), my.lpNorm<Eigen::Infinity>());
     }
-    if (magnitude) *z_max = std::max(mx.lpNorm<Eigen::Infinity>(), my.lpNorm<Eigen::Infinity>());
   };
 
   // The scalings of every cone at (S, z) and the Newton system's per-face pieces; returns the gap s^T z.
