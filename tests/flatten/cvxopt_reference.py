@@ -5,8 +5,13 @@ Written from the paper's formulation (SIGGRAPH 2014, Sec. 3.3, eqs. (5), (7), (1
     minimise c^T x  s.t.  G_l x + s_l = h_l, s_l >= 0;  G_k x + s_k = h_k, s_k in SOC_k;  A x = b,
 independently of the C++ barrier method: the Jacobians are rebuilt here from the rest triangles with
 A = U D (X D)^+ and the rotations R_j are recomputed here as the polar rotations of the Jacobians at the start X0.
+Ghost faces (the paper's, closing each boundary vertex's one-ring) carry no energy: they must not flip, and their
+largest singular value is bounded by GHOST_STRETCH times its value at X0, as in liftmap.
 
 Usage: cvxopt_reference.py INSTANCE_DIR   (instances written by export_instances)
+CVXOPT's interior-point method runs with the sparse KKT solver of cvxopt_sparse_kkt.py (UMFPACK), or with its
+default dense one if the environment sets CVXOPT_KKT=dense. Either way CVXOPT's own residuals and gap certify the
+reference solution, so a wrong KKT solve cannot produce a wrong reference, only a failure to converge.
 Each instance: meshes[0..1] and ghosts with rest positions V, faces F, slot per vertex; p ("2"/"inf"),
 h ("norm"/"max"), X0 (start, slot 0 held fixed: translation gauge), and the C++ minimiser X and objective, of the
 barrier method and (key "primal_dual", if present) of the primal-dual method.
@@ -24,7 +29,14 @@ import sys
 import time
 
 import numpy as np
-from cvxopt import matrix, solvers, spmatrix
+from cvxopt import matrix, solvers, sparse, spmatrix
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cvxopt_sparse_kkt import sparse_kkt_solver  # noqa: E402
+
+
+# Bound of a ghost face's largest singular value, relative to its value at the start X0.
+GHOST_STRETCH = 10.0
 
 
 def face_jacobian_maps(V, F):
@@ -87,7 +99,8 @@ class Instance:
             self.sets.append((maps, areas, corners, np.array(thetas), k == 2))
 
     def objective(self, X):
-        """(10a) at X with the auxiliaries eliminated; inf if infeasible."""
+        """(10a) at X with the auxiliaries eliminated; inf if infeasible (a flipped face, or a ghost face stretched
+        beyond its bound)."""
         total = 0.0
         for maps, areas, corners, thetas, ghost in self.sets:
             vals = []
@@ -96,9 +109,12 @@ class Instance:
                 st = a * math.cos(th) + b * math.sin(th) - math.hypot(g, dl)
                 if st <= 0:
                     return math.inf
-                if ghost:
-                    continue
                 S = math.hypot(a, b) + math.hypot(g, dl)
+                if ghost:
+                    a0, b0, g0, d0 = parts(self.X0[c].T @ M)
+                    if S >= GHOST_STRETCH * (math.hypot(a0, b0) + math.hypot(g0, d0)):
+                        return math.inf
+                    continue
                 vals.append(max(S, 1 / st) if self.h_max else math.hypot(S, 1 / st))
             if ghost:
                 continue
@@ -106,8 +122,9 @@ class Instance:
             total += vals.max() if self.p_inf else math.sqrt(np.dot(areas, vals ** 2))
         return total
 
-    def solve(self, tolerances=(1e-10, 1e-9, 1e-8)):
-        """Builds and solves the SOCP, trying each tolerance in turn; returns (objective, X)."""
+    def solve(self, tolerances=(1e-10, 1e-9, 1e-8), kkt="sparse"):
+        """Builds and solves the SOCP, trying each tolerance in turn; returns (objective, X).
+        kkt: "sparse" (cvxopt_sparse_kkt.py: UMFPACK on the KKT systems) or "dense" (CVXOPT's default for socp)."""
         nx = 2 * self.n_slots
         n = nx
         rows_l, rows_q = [], []  # linear rows: (coeffs dict, rhs); cones: list of rows
@@ -147,6 +164,13 @@ class Instance:
                 if ghost:
                     # ||(gamma, delta)|| <= alpha cos + beta sin
                     rows_q.append([ell, ga, de])
+                    # Sigma = ||(alpha, beta)|| + ||(gamma, delta)|| <= GHOST_STRETCH Sigma(X0): liftmap keeps the
+                    # ghost vertices, which no energy holds, in a bounded region (barrier_solver.h, kGhostStretch).
+                    gB, gC = new_var(), new_var()
+                    rows_q.append([{gB: 1}, al, be])
+                    rows_q.append([{gC: 1}, ga, de])
+                    a0, b0, g0, d0 = parts(self.X0[c].T @ M)
+                    rows_l.append(({gB: 1, gC: 1}, GHOST_STRETCH * (math.hypot(a0, b0) + math.hypot(g0, d0))))
                     continue
                 r, s, u, sB, sC = (new_var() for _ in range(5))
                 rows_l.append(({sB: 1, sC: 1, r: -1}, 0.0))  # (5a) sB + sC <= r
@@ -207,6 +231,10 @@ class Instance:
         # Translation gauge: slot 0 fixed at its start position.
         A = spmatrix([1.0, 1.0], [0, 1], [0, 1], (2, n))
         b = matrix([float(self.X0[0, 0]), float(self.X0[0, 1])])
+        # The same problem as one cone LP (socp's own stacking: linear rows first, then the cones in order).
+        G = sparse([Gl] + Gq)
+        h = matrix([hl] + hq)
+        dims = {"l": Gl.size[0], "q": [g.size[0] for g in Gq], "s": []}
         # CVXOPT's Nesterov-Todd scaling update can take the square root of a slightly negative number in its
         # last iterations when the tolerances are tighter than it can reach ("domain error"): retry looser.
         # 1e-8 is still two orders below what the comparison needs (1e-6 objectives, 1e-4 minimisers).
@@ -214,7 +242,10 @@ class Instance:
             solvers.options.update({"show_progress": bool(os.environ.get("CVXOPT_PROGRESS")), "abstol": tol,
                                     "reltol": tol, "feastol": tol, "maxiters": 200})
             try:
-                sol = solvers.socp(cvec, Gl=Gl, hl=hl, Gq=Gq, hq=hq, A=A, b=b)
+                if kkt == "sparse":
+                    sol = solvers.conelp(cvec, G, h, dims, A, b, kktsolver=sparse_kkt_solver(G, dims, A))
+                else:
+                    sol = solvers.socp(cvec, Gl=Gl, hl=hl, Gq=Gq, hq=hq, A=A, b=b)
             except (ValueError, ArithmeticError) as e:
                 print("%s: cvxopt failed at tolerance %g (%s), retrying" % (self.name, tol, e), flush=True)
                 continue
@@ -238,7 +269,7 @@ def main():
     for path in files:
         inst = Instance(path)
         t0 = time.perf_counter()
-        obj_ref, X_ref = inst.solve()
+        obj_ref, X_ref = inst.solve(kkt=os.environ.get("CVXOPT_KKT", "sparse"))
         seconds = time.perf_counter() - t0
         for label, X_ours, obj_ours, x_tol in inst.results:
             obj_at_ours = inst.objective(X_ours)
