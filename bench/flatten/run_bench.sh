@@ -9,4 +9,4 @@ out=$build/bench/flatten
 mkdir -p "$out"
 "$build/bench/flatten/bench_flatten" "$out" "$faces" | tee "$out/bench.txt"
 ours=$(sed -n 's/.* ours_seconds \([^ ]*\) .*/\1/p' "$out/bench.txt")
-/usr/bin/python3 "$(dirname "$0")/cvxopt_time.py" "$out/first_subproblem_$faces.json" "$ours"
+/usr/bin/python3 "$(dirname "$0")/cvxopt_time.py" "$out/first_subproblem_$faces.json" "$ours" sparse
