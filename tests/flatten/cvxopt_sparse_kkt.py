@@ -20,8 +20,11 @@ factorisation failed near the optimum and the dual residual stalled at 3e-7.
 
 W^-1 is diag(di) on the linear rows and (1 / beta) (2 u u^T - J), u = J v, on a second-order cone. On a large cone
 (the p = 2 objective cones, one entry per face) the rank-one part (2 / beta) u u^T would make W^-1 G dense, so
-W^-1 G = M + sum_k a_k g_k^T with M sparse, a_k = u_k on cone k's rows and g_k^T = (2 / beta_k) u_k^T G_k, and the
-system gets two more unknowns per large cone, sigma_k = g_k^T ux and rho_k = a_k^T wz, which keep it sparse.
+W^-1 G = M + sum_k a_k g_k^T with M sparse, a_k = u_k on cone k's rows and g_k^T = (2 / beta_k) u_k^T G_k. The
+matrix is then K0 + sum_k (a_k g_k^T + g_k a_k^T) (a_k in the wz rows, g_k in the ux rows), K0 the sparse system
+with M: UMFPACK factorises K0 and the Sherman-Morrison-Woodbury formula adds the rank-2 terms. (Extra unknowns
+g_k^T ux and a_k^T wz in the LU instead put dense rows into it: 2.7 s per factorisation against 0.19 s for K0 on a
+25k x 25k system.)
 """
 
 import numpy as np
@@ -61,7 +64,7 @@ def sparse_kkt_solver(G, dims, A):
     o_z = n + p
     A_trip = _triplets(A, n, 0)
     At_trip = _triplets(A, 0, n, transpose=True)
-    state = {"symbolic": None}
+    state = {"symbolic": None, "pattern": None}
 
     def factor(W):
         # Block-diagonal sparse part of W^-1, as triplets: the linear rows, then the small cones by dimension.
@@ -108,8 +111,11 @@ def sparse_kkt_solver(G, dims, A):
         put((o_z + np.arange(rows), o_z + np.arange(rows), -np.ones(rows)))
         K = spmatrix(np.concatenate(KV).tolist(), np.concatenate(KI).tolist(), np.concatenate(KJ).tolist(),
                      (size, size))
-        if state["symbolic"] is None:
+        # UMFPACK's symbolic analysis is reused while the pattern is the same (it is, iteration after iteration).
+        pattern = (np.array(K.CCS[0]), np.array(K.CCS[1]))
+        if state["symbolic"] is None or not all(np.array_equal(a, b) for a, b in zip(pattern, state["pattern"])):
             state["symbolic"] = umfpack.symbolic(K)
+            state["pattern"] = pattern
         Fn = umfpack.numeric(K, state["symbolic"])
 
         def k0_solve(r):
