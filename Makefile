@@ -30,7 +30,7 @@ build-asan: deps $(BUILD_ASAN)/build.ninja
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 
 # The suite in Release, then again under AddressSanitizer + UndefinedBehaviorSanitizer. Tests labelled `slow`
-# (the 300-configuration cut sweep, the CVXOPT differential test) run with `make test-slow`.
+# (the 300-configuration cut sweep) run with `make test-slow`; the CVXOPT differential test is in the suite.
 test: meshes build build-asan
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -LE slow
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
