@@ -83,7 +83,9 @@ class Instance:
         # Ghost vertices carry no energy: their optimal positions are not unique, so minimisers are compared on
         # the slots of the two meshes only.
         self.mesh_slots = sorted(set(d["meshes"][0]["slot"]) | set(d["meshes"][1]["slot"]))
-        self.sets = []  # (maps, areas, slots per face corner, thetas, is_ghost)
+        # (maps, areas, slots per face corner, thetas, is_ghost, bounds: GHOST_STRETCH Sigma(X0) per face, used on
+        # ghost faces only)
+        self.sets = []
         for k, m in enumerate(d["meshes"] + [d["ghosts"]]):
             if len(m["F"]) == 0:
                 continue
@@ -92,27 +94,27 @@ class Instance:
             slot = np.array(m["slot"], dtype=int)
             maps, areas = face_jacobian_maps(V, F)
             corners = slot[F]
-            thetas = []
+            thetas, bounds = [], []
             for M, c in zip(maps, corners):
-                a, b, _, _ = parts(self.X0[c].T @ M)
+                a, b, g, dl = parts(self.X0[c].T @ M)
                 thetas.append(math.atan2(b, a))
-            self.sets.append((maps, areas, corners, np.array(thetas), k == 2))
+                bounds.append(GHOST_STRETCH * (math.hypot(a, b) + math.hypot(g, dl)))
+            self.sets.append((maps, areas, corners, np.array(thetas), k == 2, np.array(bounds)))
 
     def objective(self, X):
         """(10a) at X with the auxiliaries eliminated; inf if infeasible (a flipped face, or a ghost face stretched
         beyond its bound)."""
         total = 0.0
-        for maps, areas, corners, thetas, ghost in self.sets:
+        for maps, areas, corners, thetas, ghost, bounds in self.sets:
             vals = []
-            for M, c, th in zip(maps, corners, thetas):
+            for M, c, th, bound in zip(maps, corners, thetas, bounds):
                 a, b, g, dl = parts(X[c].T @ M)
                 st = a * math.cos(th) + b * math.sin(th) - math.hypot(g, dl)
                 if st <= 0:
                     return math.inf
                 S = math.hypot(a, b) + math.hypot(g, dl)
                 if ghost:
-                    a0, b0, g0, d0 = parts(self.X0[c].T @ M)
-                    if S >= GHOST_STRETCH * (math.hypot(a0, b0) + math.hypot(g0, d0)):
+                    if S >= bound:
                         return math.inf
                     continue
                 vals.append(max(S, 1 / st) if self.h_max else math.hypot(S, 1 / st))
@@ -154,9 +156,9 @@ class Instance:
 
         taus = []
         tau_cones = []
-        for maps, areas, corners, thetas, ghost in self.sets:
+        for maps, areas, corners, thetas, ghost, bounds in self.sets:
             E = []
-            for M, c, th in zip(maps, corners, thetas):
+            for M, c, th, bound in zip(maps, corners, thetas, bounds):
                 al, be, ga, de = jac_rows(M, c)
                 ell = dict((i, math.cos(th) * v) for i, v in al.items())
                 for i, v in be.items():
@@ -169,8 +171,7 @@ class Instance:
                     gB, gC = new_var(), new_var()
                     rows_q.append([{gB: 1}, al, be])
                     rows_q.append([{gC: 1}, ga, de])
-                    a0, b0, g0, d0 = parts(self.X0[c].T @ M)
-                    rows_l.append(({gB: 1, gC: 1}, GHOST_STRETCH * (math.hypot(a0, b0) + math.hypot(g0, d0))))
+                    rows_l.append(({gB: 1, gC: 1}, float(bound)))
                     continue
                 r, s, u, sB, sC = (new_var() for _ in range(5))
                 rows_l.append(({sB: 1, sC: 1, r: -1}, 0.0))  # (5a) sB + sC <= r

@@ -93,7 +93,7 @@ def sparse_kkt_solver(G, dims, A):
             I.append(offsets[k] + np.arange(q))
             J.append(offsets[k] + np.arange(q))
             V.append(d / beta)
-            u_large.append((u, beta))
+            u_large.append((u, beta, k))
         I, J, V = np.concatenate(I), np.concatenate(J), np.concatenate(V)
         Winv = spmatrix(V.tolist(), I.tolist(), J.tolist(), (rows, rows))
         M = Winv * G
@@ -125,13 +125,10 @@ def sparse_kkt_solver(G, dims, A):
 
         # The large cones' rank-one parts: K0 + U V^T with U = [a_1 g_1 ...], V = [g_1 a_1 ...] (a_k in the wz
         # rows, g_k in the ux rows), solved by the Sherman-Morrison-Woodbury formula around K0's factors.
-        lows = []
         U = np.zeros((size, 2 * nb))
-        for i, ((u, beta), k, Gk) in enumerate(zip(u_large, large, G_large)):
-            g = np.array((2 / beta) * (Gk.T * matrix(u))).ravel()
+        for i, ((u, beta, k), Gk) in enumerate(zip(u_large, G_large)):
             U[o_z + offsets[k]:o_z + offsets[k + 1], 2 * i] = u
-            U[:n, 2 * i + 1] = g
-            lows.append((u, beta, k))
+            U[:n, 2 * i + 1] = np.array((2 / beta) * (Gk.T * matrix(u))).ravel()  # g_k
         Vt = U[:, [j ^ 1 for j in range(2 * nb)]].T
         if nb:
             Z = k0_solve(U)
@@ -139,7 +136,7 @@ def sparse_kkt_solver(G, dims, A):
 
         def winv_apply(w):
             out = np.array(Winv * matrix(w)).ravel()
-            for u, beta, k in lows:
+            for u, beta, k in u_large:
                 o, e = offsets[k], offsets[k + 1]
                 out[o:e] += (2 / beta) * u * float(u @ w[o:e])
             return out
