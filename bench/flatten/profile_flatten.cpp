@@ -3,7 +3,8 @@
 // steps, damped steps, repaired steps, and time. This is where bench/RESULTS.md's "where the time goes" comes from.
 // Usage: profile_flatten A.off B.off landmarks.txt [max_outer_iterations [barrier_growth [relative_gap]]]
 // Environment: PROFILE_STEPS=1 prints every step; PROFILE_SOLVER=primal-dual uses the primal-dual solver (a "centring"
-// line is then one of its iterations, with t = 1 / mu); PROFILE_P_INF=1 solves for p = inf.
+// line is then one of its iterations, with t = 1 / mu); PROFILE_P_INF=1 solves for p = inf; PROFILE_GAP_FRACTION=x sets
+// JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap).
 
 #include <chrono>
 #include <cstdio>
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
   if (const char* m = std::getenv("PROFILE_SOLVER"); m != nullptr && std::string(m) == "primal-dual") {
     options.method = SubproblemSolver::kPrimalDual;
   }
+  if (const char* g = std::getenv("PROFILE_GAP_FRACTION")) options.gap_fraction = std::atof(g);
   if (std::getenv("PROFILE_P_INF")) options.p = std::numeric_limits<double>::infinity();
   int outer = 1;
   struct Centring {
@@ -88,8 +90,8 @@ int main(int argc, char** argv) {
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (size_t i = 0; i < r.iterations.size(); ++i) {
     const auto& it = r.iterations[i];
-    std::printf("iterate %zu: energy %.6f  max distortion %.4g  Newton steps %d  %.2f s\n", i, it.energy,
-                it.max_distortion, it.newton_steps, it.seconds);
+    std::printf("iterate %zu: energy %.6f  max distortion %.4g  gap %.2g  Newton steps %d  %.2f s\n", i, it.energy,
+                it.max_distortion, it.subproblem_gap, it.newton_steps, it.seconds);
   }
   std::printf("flatten total %.2f s %s\n", total, r.stop_reason.c_str());
   return 0;

@@ -1,5 +1,7 @@
 #include "flatten/joint_flatten.h"
 
+#include <algorithm>
+
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
@@ -180,6 +182,15 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
   return jp;
 }
 
+double subproblem_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations) {
+  const double finest = options.solver.relative_gap;
+  if (!(options.gap_fraction > 0)) return finest;
+  const double coarsest = std::max(finest, options.relative_tolerance);
+  if (iterations.size() < 2) return coarsest;
+  const double before = iterations[iterations.size() - 2].energy, last = iterations.back().energy;
+  return std::clamp(options.gap_fraction * (before - last) / last, finest, coarsest);
+}
+
 bool uses_primal_dual(const JointFlattenOptions& options) {
   return options.method == SubproblemSolver::kPrimalDual ||
          (options.method == SubproblemSolver::kAuto && std::isinf(options.p));
@@ -233,10 +244,12 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const auto t0 = std::chrono::steady_clock::now();
     set_rotations(sp, X);
+    BarrierOptions solver = options.solver;
+    solver.relative_gap = subproblem_gap(options, res.iterations);
     BarrierResult br;
     try {
-      br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, options.solver, cholesky)
-                       : solve_convex_subproblem(sp, X, options.solver, cholesky);
+      br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, solver, cholesky)
+                       : solve_convex_subproblem(sp, X, solver, cholesky);
     } catch (const PipelineError& e) {
       // Name the iteration and the distortion it started from: the solver's own message cannot.
       const double start_max = res.iterations.back().max_distortion;
@@ -264,6 +277,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     }
     JointFlattenIteration it;
     it.subproblem_objective = br.objective;
+    it.subproblem_gap = solver.relative_gap;
     it.newton_steps = br.newton_steps;
     it.subproblem_converged = br.converged;
     it.stalled_centrings = br.stalled_centrings;

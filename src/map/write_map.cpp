@@ -84,6 +84,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"solver", uses_primal_dual(options.flatten) ? "primal-dual" : "barrier"},
       {"normalize_area", options.flatten.normalize_area},
       {"relative_tolerance", options.flatten.relative_tolerance},
+      {"gap_fraction", options.flatten.gap_fraction},
       {"max_iterations", options.flatten.max_iterations},
       {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},
   };
@@ -103,6 +104,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                   {"max_distortion", i.max_distortion},
                   {"subproblem_objective", i.subproblem_objective},
                   {"newton_steps", i.newton_steps},
+                  {"subproblem_gap", i.subproblem_gap},
                   {"subproblem_converged", i.subproblem_converged},
                   {"stalled_centrings", i.stalled_centrings},
                   {"seconds", i.seconds}});
