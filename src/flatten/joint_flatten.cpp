@@ -1,8 +1,7 @@
 #include "flatten/joint_flatten.h"
 
-#include <algorithm>
-
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>

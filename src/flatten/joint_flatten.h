@@ -53,8 +53,8 @@ struct JointFlattenOptions {
   /// by orders of magnitude) to relative_tolerance. A gap of a tenth of what the outer loop is about to gain cannot
   /// change its course, and near convergence (gains near relative_tolerance) it is a tenth of the stopping
   /// threshold. Camel-cow, first 4 outer iterations: gaps of 1e-3 instead of 1e-5 took 64 / 37 / 38 / 31 Newton
-  /// steps instead of 74 / 53 / 52 / 45, with true energies (8) within 1.5e-5 relative (some lower). 0: every
-  /// subproblem to solver.relative_gap.
+  /// steps instead of 74 / 53 / 52 / 45, with true energies (8) within 5e-5 relative (lower in iterations 2-4). 0:
+  /// every subproblem to solver.relative_gap.
   double gap_fraction = 0.1;
   SubproblemSolver method = SubproblemSolver::kAuto;
   /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
