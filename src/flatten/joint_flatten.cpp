@@ -97,6 +97,35 @@ void set_rotations(ConvexSubproblem& problem, const Eigen::MatrixXd& X) {
   }
 }
 
+void place_ghost_vertices(ConvexSubproblem& problem, Eigen::MatrixXd& X) {
+  SubproblemMesh& g = problem.ghosts;
+  const auto n_ghost_faces = g.F.rows();
+  if (n_ghost_faces == 0) return;
+  for (Eigen::Index f = 0; f < n_ghost_faces; f += 2) {
+    const int v = g.F(f, 0), a = g.F(f, 1), gv = g.F(f, 2), b = g.F(f + 1, 2);
+    const Eigen::Vector2d pv = X.row(v).transpose();
+    const Eigen::Vector2d da = X.row(a).transpose() - pv, db = X.row(b).transpose() - pv;
+    // The exterior wedge at v runs counter-clockwise from da to db (the interior, on the left of the
+    // counter-clockwise boundary, from db to da); its angle is 2 pi minus v's angle sum. At a convex corner
+    // (exterior angle above pi, every corner of the Tutte start) its bisector is -(da^ + db^); at a reflex one (below
+    // pi, e.g. along a cut path's tip) it is +(da^ + db^), where -(da^ + db^) would point into the disk.
+    const Eigen::Vector2d sum = da.normalized() + db.normalized();
+    const double cross = da.x() * db.y() - da.y() * db.x();
+    Eigen::Vector2d out;
+    if (cross < 0) {
+      out = -sum.normalized();
+    } else if (cross > 0) {
+      out = sum.normalized();
+    } else {  // straight (exterior angle pi): the normal on the exterior side
+      out = Eigen::Vector2d(-da.y(), da.x()).normalized();
+    }
+    X.row(gv) = (pv + 0.25 * (da.norm() + db.norm()) * out).transpose();
+  }
+  g.V = Eigen::MatrixXd::Zero(X.rows(), 3);
+  g.V.leftCols(2) = X;
+  g.jacobian = jacobian_operator(g.V, g.F);
+}
+
 JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const FlatteningDisk& n,
                                                const JointFlattenOptions& options) {
   check_boundary(m, "M");
@@ -157,8 +186,8 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
     }
   }
 
-  // Ghost faces (v, a, g), (v, g, b) for boundary vertex v with neighbours a (before) and b (after): they
-  // close v's one-ring through the ghost vertex g, placed on the outer bisector; rest shape = their start shape.
+  // Ghost faces (v, a, g), (v, g, b) for boundary vertex v with neighbours a (before) and b (after): they close
+  // v's one-ring through the ghost vertex g (placed by place_ghost_vertices).
   if (options.ghost_faces) {
     SubproblemMesh& g = sp.ghosts;
     g.F.resize(2 * nb, 3);
@@ -166,16 +195,10 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
     for (int i = 0; i < sp.n_slots; ++i) g.slot[static_cast<size_t>(i)] = i;
     for (int i = 0; i < nb; ++i) {
       const int a = (i + nb - 1) % nb, b = (i + 1) % nb, gv = n_mesh_slots + i;
-      const Eigen::RowVector2d pv = jp.X0.row(i);
-      const Eigen::RowVector2d da = jp.X0.row(a) - pv, db = jp.X0.row(b) - pv;
-      const Eigen::RowVector2d out = -(da.normalized() + db.normalized()).normalized();
-      jp.X0.row(gv) = pv + 0.5 * (da.norm() + db.norm()) * 0.5 * out;
       g.F.row(2 * i) << i, a, gv;
       g.F.row(2 * i + 1) << i, gv, b;
     }
-    g.V = Eigen::MatrixXd::Zero(sp.n_slots, 3);
-    g.V.leftCols(2) = jp.X0;
-    g.jacobian = jacobian_operator(g.V, g.F);
+    place_ghost_vertices(sp, jp.X0);
   }
   set_rotations(sp, jp.X0);
   return jp;
@@ -242,6 +265,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
   const bool primal_dual = uses_primal_dual(options);
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const auto t0 = std::chrono::steady_clock::now();
+    place_ghost_vertices(sp, X);
     set_rotations(sp, X);
     BarrierOptions solver = options.solver;
     solver.relative_gap = subproblem_gap(options, res.iterations);

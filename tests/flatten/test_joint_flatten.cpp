@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "disk_patches.h"
 #include "flatten/flattening_checks.h"
+#include "flatten/jacobian.h"
 
 namespace liftmap {
 namespace {
@@ -124,6 +125,74 @@ TEST(flatten_joint, AdaptiveGapIsRecordedAndKeepsTheInvariants) {
   }
   expect_liftable(a, r.Phi, "Phi");
   expect_liftable(b, r.Psi, "Psi");
+}
+
+/// Ghost faces at X are well-shaped starts: positively oriented, and with X as their rest shape their Jacobians
+/// are rotations (Sigma = sigma = 1, so sigma_tilde = 1 after set_rotations).
+void expect_fresh_ghosts(const ConvexSubproblem& sp, const Eigen::MatrixXd& X) {
+  const SubproblemMesh& g = sp.ghosts;
+  EXPECT_GT(signed_double_areas(g.F, X).minCoeff(), 0) << "a ghost face is flipped or degenerate";
+  const Eigen::MatrixXd P = similarity_parts(g.jacobian, g.F, X);
+  for (Eigen::Index f = 0; f < P.rows(); ++f) {
+    EXPECT_NEAR(std::hypot(P(f, 0), P(f, 1)), 1, 1e-9) << "ghost face " << f;
+    EXPECT_NEAR(std::hypot(P(f, 2), P(f, 3)), 0, 1e-9) << "ghost face " << f;
+  }
+}
+
+TEST(flatten_joint, GhostVerticesCloseReflexAndConvexCorners) {
+  // An L-shaped hexagon, counter-clockwise; its corner (1, 1) is reflex (interior angle 3 pi / 2). A ghost vertex
+  // on the bisector of the smaller angle between the two boundary edges would fall inside the disk there.
+  ConvexSubproblem sp;
+  const int nb = 6;
+  Eigen::MatrixXd X(2 * nb, 2);
+  X.topRows(nb) << 0, 0, 2, 0, 2, 1, 1, 1, 1, 2, 0, 2;
+  X.bottomRows(nb).setZero();
+  sp.ghosts.F.resize(2 * nb, 3);
+  for (int i = 0; i < nb; ++i) {
+    sp.ghosts.F.row(2 * i) << i, (i + nb - 1) % nb, nb + i;
+    sp.ghosts.F.row(2 * i + 1) << i, nb + i, (i + 1) % nb;
+  }
+  place_ghost_vertices(sp, X);
+  expect_fresh_ghosts(sp, X);
+  // The reflex corner's exterior wedge is the quarter plane towards (2, 2); its ghost lies on its bisector, at half
+  // the mean length of the corner's two boundary edges (both 1).
+  EXPECT_NEAR(X(nb + 3, 0), 1 + 0.5 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(X(nb + 3, 1), 1 + 0.5 / std::sqrt(2.0), 1e-12);
+  // A convex corner: (0, 0), exterior wedge of 3 pi / 2 from (0, 1) (towards the previous vertex) counter-clockwise
+  // to (1, 0); bisector (-1, -1) / sqrt(2).
+  EXPECT_NEAR(X(nb, 0), -0.5 * 2 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(X(nb, 1), -0.5 * 2 / std::sqrt(2.0), 1e-12);
+}
+
+TEST(flatten_joint, GhostVerticesArePlacedAfreshForEachSubproblem) {
+  // What joint_flatten does between two outer iterations, on a real patch pair: the first subproblem stretches
+  // the ghost faces; placing the ghosts afresh restores well-shaped ghost faces, changes no energy (ghost faces
+  // carry none) and gives a strictly feasible start for the second subproblem.
+  const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 1500, 0, 500);
+  JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), {});
+  ConvexSubproblem& sp = jp.subproblem;
+  expect_fresh_ghosts(sp, jp.X0);
+  SparseCholesky cholesky;
+  BarrierOptions solver;
+  solver.relative_gap = 1e-3;
+  const BarrierResult first = solve_convex_subproblem(sp, jp.X0, solver, cholesky);
+  ASSERT_TRUE(first.converged);
+  const Eigen::MatrixXd P = similarity_parts(sp.ghosts.jacobian, sp.ghosts.F, first.X);
+  double stretched = 0;
+  for (Eigen::Index f = 0; f < P.rows(); ++f) stretched = std::max(stretched, std::hypot(P(f, 0), P(f, 1)));
+  EXPECT_GT(stretched, 1.5) << "the first subproblem did not move the ghost faces away from their rest shape";
+
+  Eigen::MatrixXd X = first.X;
+  set_rotations(sp, X);
+  const double before = subproblem_objective(sp, X);
+  place_ghost_vertices(sp, X);
+  set_rotations(sp, X);
+  expect_fresh_ghosts(sp, X);
+  EXPECT_EQ(X.topRows(X.rows() - sp.ghosts.F.rows() / 2), first.X.topRows(X.rows() - sp.ghosts.F.rows() / 2));
+  EXPECT_NEAR(subproblem_objective(sp, X), before, 1e-12 * before);
+  const BarrierResult second = solve_convex_subproblem(sp, X, solver, cholesky);
+  EXPECT_TRUE(second.converged);
+  EXPECT_LE(second.objective, before);
 }
 
 TEST(flatten_joint, RejectsMismatchedBoundaries) {
