@@ -4,7 +4,8 @@
 // Usage: profile_flatten A.off B.off landmarks.txt [max_outer_iterations [barrier_growth [relative_gap]]]
 // Environment: PROFILE_STEPS=1 prints every step; PROFILE_SOLVER=primal-dual uses the primal-dual solver (a "centring"
 // line is then one of its iterations, with t = 1 / mu); PROFILE_P_INF=1 solves for p = inf; PROFILE_GAP_FRACTION=x sets
-// JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap).
+// JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap); PROFILE_START_GAP_FRACTION=x sets
+// JointFlattenOptions::start_gap_fraction (0: every subproblem starts at the usual barrier parameter).
 
 #include <chrono>
 #include <cstdio>
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
     options.method = SubproblemSolver::kPrimalDual;
   }
   if (const char* g = std::getenv("PROFILE_GAP_FRACTION")) options.gap_fraction = std::atof(g);
+  if (const char* g = std::getenv("PROFILE_START_GAP_FRACTION")) options.start_gap_fraction = std::atof(g);
   if (std::getenv("PROFILE_P_INF")) options.p = std::numeric_limits<double>::infinity();
   int outer = 1;
   struct Centring {

@@ -527,6 +527,9 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   }
   if (!st.p_inf) {
     t *= options.initial_barrier_factor;
+    if (options.initial_gap > 0) {
+      t = std::max(t, nu / (options.initial_gap * (std::sqrt(S_start[0]) + std::sqrt(S_start[1]))));
+    }
     // The epigraph variable where the barrier's derivative in T_m balances t: t = 2 T_m / (T_m^2 - S_m). Its
     // gradient in e_j is then 2 w_j e_j / (T_m^2 - S_m) ~ t w_j e_j / sqrt(S_m), that of t sqrt(S_m).
     for (size_t m = 0; m < 2; ++m) z.T[m] = optimal_epigraph(S_start[m], t);

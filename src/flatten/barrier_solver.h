@@ -68,6 +68,11 @@ struct BarrierOptions {
   /// instances, and one ran out of steps.
   double initial_barrier_factor = 100;
   double barrier_growth = 20;  ///< t <- barrier_growth * t after each centring
+  /// p = 2: if positive, the first barrier parameter is at least the one whose gap bound nu / t is this times the
+  /// objective at the start (0: initial_barrier_factor alone decides). For a start that is already nearly optimal,
+  /// such as the previous outer iteration's minimiser, whose central point at a low t lies far back towards the
+  /// analytic centre (joint_flatten sets it; JointFlattenOptions::start_gap_fraction).
+  double initial_gap = 0;
   /// The last centring (the one that can certify the gap) stops when the Newton decrement lambda^2/2 is below this,
   /// or earlier, once lambda^2/2 is below centring_tolerance and the gap bound at the point,
   /// (nu + lambda sqrt(nu) / (1 - lambda)) / t, meets relative_gap: the certificate is then already in hand, and

@@ -213,6 +213,12 @@ double subproblem_gap(const JointFlattenOptions& options, const std::vector<Join
   return std::clamp(options.gap_fraction * (before - last) / last, finest, coarsest);
 }
 
+double start_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations) {
+  if (!(options.start_gap_fraction > 0) || iterations.size() < 2) return 0;
+  const double before = iterations[iterations.size() - 2].energy, last = iterations.back().energy;
+  return before > last ? options.start_gap_fraction * (before - last) / last : 0;
+}
+
 bool uses_primal_dual(const JointFlattenOptions& options) {
   return options.method == SubproblemSolver::kPrimalDual ||
          (options.method == SubproblemSolver::kAuto && std::isinf(options.p));
@@ -269,6 +275,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     set_rotations(sp, X);
     BarrierOptions solver = options.solver;
     solver.relative_gap = subproblem_gap(options, res.iterations);
+    solver.initial_gap = start_gap(options, res.iterations);
     BarrierResult br;
     try {
       br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, solver, cholesky)

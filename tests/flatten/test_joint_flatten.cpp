@@ -111,6 +111,56 @@ TEST(flatten_joint, SubproblemGapFollowsTheOuterProgress) {
   EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-5);
 }
 
+TEST(flatten_joint, StartGapFollowsTheOuterProgress) {
+  JointFlattenOptions opt;  // start_gap_fraction 1
+  std::vector<JointFlattenIteration> its(1);
+  its[0].energy = 1000;
+  EXPECT_EQ(start_gap(opt, its), 0);  // first subproblem: the usual barrier parameter
+  its.emplace_back().energy = 10;
+  EXPECT_NEAR(start_gap(opt, its), 99, 1e-12);  // the relative gain (the barrier method keeps the larger t anyway)
+  its.emplace_back().energy = 10 / (1 + 4e-3);
+  EXPECT_NEAR(start_gap(opt, its), 4e-3, 1e-15);
+  opt.start_gap_fraction = 0.5;
+  EXPECT_NEAR(start_gap(opt, its), 2e-3, 1e-15);
+  its.emplace_back().energy = its.back().energy;  // no gain: no guess either
+  EXPECT_EQ(start_gap(opt, its), 0);
+  its.pop_back();
+  opt.start_gap_fraction = 0;  // off
+  EXPECT_EQ(start_gap(opt, its), 0);
+}
+
+TEST(flatten_joint, InitialGapSkipsCentringsAndKeepsTheCertificate) {
+  // The second subproblem of a real patch pair, from the first one's minimiser, with and without a first barrier
+  // parameter matched to a gap of 1e-2: both certified, optima equal within the gap, the first t no lower and no
+  // more centrings with it.
+  const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 1500, 0, 500);
+  JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), {});
+  ConvexSubproblem& sp = jp.subproblem;
+  SparseCholesky cholesky;
+  BarrierOptions solver;
+  solver.relative_gap = 1e-3;
+  Eigen::MatrixXd X = solve_convex_subproblem(sp, jp.X0, solver, cholesky).X;
+  place_ghost_vertices(sp, X);
+  set_rotations(sp, X);
+  solver.relative_gap = 1e-4;
+  double first_t[2] = {0, 0};
+  BarrierResult r[2];
+  for (int k = 0; k < 2; ++k) {
+    BarrierOptions o = solver;
+    o.initial_gap = k == 0 ? 0.0 : 1e-2;
+    o.on_step = [&](const BarrierStep& st) {
+      if (first_t[k] == 0) first_t[k] = st.t;
+    };
+    r[k] = solve_convex_subproblem(sp, X, o, cholesky);
+    std::printf("  initial gap %g: first t %.3g, %d centrings, %d Newton steps, objective %.10g\n", o.initial_gap,
+                first_t[k], r[k].centrings, r[k].newton_steps, r[k].objective);
+    EXPECT_TRUE(r[k].converged);
+  }
+  EXPECT_GT(first_t[1], first_t[0]);
+  EXPECT_LE(r[1].centrings, r[0].centrings);
+  EXPECT_NEAR(r[1].objective, r[0].objective, solver.relative_gap * r[0].objective);
+}
+
 TEST(flatten_joint, AdaptiveGapIsRecordedAndKeepsTheInvariants) {
   const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 1500, 0, 500);
   JointFlattenOptions opt;
