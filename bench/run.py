@@ -528,12 +528,14 @@ class Bench:
                     "| solver | p | energy after | iterations (Newton steps) | seconds | s per iteration |",
                     "|---|---|---|---|---|---|"]
         for label, pv, o in rows:
-            m = re.search(r"^iterate 1: energy (\S+)\s+max distortion \S+\s+Newton steps (\d+)\s+(\S+) s", o, re.M)
+            m = re.search(r"^iterate 1: energy (\S+)\s+max distortion \S+\s+(?:gap \S+\s+)?Newton steps (\d+)\s+(\S+) s",
+                          o, re.M)
             if m:
                 n, sec = int(m.group(2)), float(m.group(3))
                 self.md.append(f"| {label} | {pv} | {m.group(1)} | {n} | {sec:.2f} | {sec / max(n, 1):.3f} |")
             else:
-                self.md.append(f"| {label} | {pv} | {o.strip().splitlines()[-1] if o.strip() else 'no output'} | | | |")
+                last = o.strip().splitlines()[-1] if o.strip() else "no output"
+                self.md.append(f"| {label} | {pv} | no 'iterate 1' line in the output (last line: {last}) | | | |")
         self.md.append("")
 
     # ---- 3. scaling -------------------------------------------------------------------------------------
