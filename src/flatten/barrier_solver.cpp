@@ -501,7 +501,8 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   // Start on the central path as nearly as a single t allows: t0 minimises |t grad f0 + grad barrier| in the
   // directions where f0 varies (the e_j for p = 2, the T_m for p = inf).
   const auto S_start = mesh_sums(s, z);
-  double t = nu / (st.p_inf ? f0(z) : std::sqrt(S_start[0]) + std::sqrt(S_start[1]));
+  const double start_objective_2 = std::sqrt(S_start[0]) + std::sqrt(S_start[1]);  // (10a) at the start, p = 2
+  double t = nu / (st.p_inf ? f0(z) : start_objective_2);
   {
     double gf_gphi = 0, gf_gf = 0;
     std::array<double, 2> barrier_t{0, 0};
@@ -528,7 +529,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   if (!st.p_inf) {
     t *= options.initial_barrier_factor;
     if (options.initial_gap > 0) {
-      t = std::max(t, nu / (options.initial_gap * (std::sqrt(S_start[0]) + std::sqrt(S_start[1]))));
+      t = std::max(t, nu / (options.initial_gap * start_objective_2));
     }
     // The epigraph variable where the barrier's derivative in T_m balances t: t = 2 T_m / (T_m^2 - S_m). Its
     // gradient in e_j is then 2 w_j e_j / (T_m^2 - S_m) ~ t w_j e_j / sqrt(S_m), that of t sqrt(S_m).

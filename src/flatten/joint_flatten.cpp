@@ -204,19 +204,28 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
   return jp;
 }
 
+namespace {
+
+/// The last outer iteration's relative energy decrease (E_{k-1} - E_k) / E_k; needs at least two iterates.
+double last_relative_gain(const std::vector<JointFlattenIteration>& iterations) {
+  const double before = iterations[iterations.size() - 2].energy, last = iterations.back().energy;
+  return (before - last) / last;
+}
+
+}  // namespace
+
 double subproblem_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations) {
   const double finest = options.solver.relative_gap;
   if (!(options.gap_fraction > 0)) return finest;
   const double coarsest = std::max(finest, options.relative_tolerance);
   if (iterations.size() < 2) return coarsest;
-  const double before = iterations[iterations.size() - 2].energy, last = iterations.back().energy;
-  return std::clamp(options.gap_fraction * (before - last) / last, finest, coarsest);
+  return std::clamp(options.gap_fraction * last_relative_gain(iterations), finest, coarsest);
 }
 
 double start_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations) {
   if (!(options.start_gap_fraction > 0) || iterations.size() < 2) return 0;
-  const double before = iterations[iterations.size() - 2].energy, last = iterations.back().energy;
-  return before > last ? options.start_gap_fraction * (before - last) / last : 0;
+  const double gain = last_relative_gain(iterations);
+  return gain > 0 ? options.start_gap_fraction * gain : 0;
 }
 
 bool uses_primal_dual(const JointFlattenOptions& options) {
