@@ -1,6 +1,8 @@
 #pragma once
-/// The one sparse symmetric positive definite solver of liftmap: CHOLMOD, with the symbolic analysis done once
-/// per sparsity pattern and a numeric refactorisation per matrix (every Newton step, every outer iteration).
+/// The one sparse symmetric positive definite solver of liftmap: CHOLMOD's supernodal LL^T, with the symbolic
+/// analysis (fill-reducing ordering: AMD, or METIS's nested dissection for large systems) done once per sparsity
+/// pattern and a numeric refactorisation per matrix (every Newton step, every outer iteration). The triangular
+/// solves with the factor are ours (sparse_cholesky.cpp says why).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
