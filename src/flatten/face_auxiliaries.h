@@ -28,8 +28,10 @@ struct FaceAuxiliaries {
 
 /// Solves a FaceAuxiliaryProblem exactly, as a problem in one variable: for a fixed c the optimal e has a closed
 /// form (eq. 3) or is the root of a monotone function (eq. 2), and the remaining function of the slack
-/// u = c - lo is convex with a slope from -infinity at u = 0 to +infinity at the upper end of its interval; the
-/// root of the slope is bracketed from the warm start and found by TOMS 748 (Boost.Math). (A damped Newton iteration
+/// u = c - lo is convex with a slope from -infinity at u = 0 to +infinity at the upper end of its interval. The
+/// root of the slope is found by Newton's method from the warm start inside a shrinking bracket (ghost faces and
+/// eq. 3, whose slope has a closed-form derivative), or, for eq. 2 and if Newton has not converged in 30 steps,
+/// bracketed from the warm start and found by TOMS 748 (Boost.Math). (A damped Newton iteration
 /// in (c, e), restarted in the middle of c's interval, stopped far from the optimum on faces whose optimal slack is
 /// ~1e-6 of it; on camel-cow such faces cost one centring 50 Newton steps instead of 12.)
 /// \param c_warm a guess of c, used if it lies strictly inside c's interval
