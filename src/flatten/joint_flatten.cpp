@@ -217,7 +217,7 @@ double last_relative_gain(const std::vector<JointFlattenIteration>& iterations) 
 double subproblem_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations) {
   const double finest = options.solver.relative_gap;
   if (!(options.gap_fraction > 0)) return finest;
-  const double coarsest = std::max(finest, options.relative_tolerance);
+  const double coarsest = std::max(finest, options.max_subproblem_gap);
   if (iterations.size() < 2) return coarsest;
   return std::clamp(options.gap_fraction * last_relative_gain(iterations), finest, coarsest);
 }

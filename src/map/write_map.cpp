@@ -85,6 +85,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"normalize_area", options.flatten.normalize_area},
       {"relative_tolerance", options.flatten.relative_tolerance},
       {"gap_fraction", options.flatten.gap_fraction},
+      {"max_subproblem_gap", options.flatten.max_subproblem_gap},
       {"start_gap_fraction", options.flatten.start_gap_fraction},
       {"max_iterations", options.flatten.max_iterations},
       {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},

@@ -95,13 +95,15 @@ TEST(flatten_joint, AutoSolverIsBarrierForTwoNormAndPrimalDualForInfinityNorm) {
 }
 
 TEST(flatten_joint, SubproblemGapFollowsTheOuterProgress) {
-  JointFlattenOptions opt;  // relative_tolerance 1e-3, finest gap 1e-5, gap_fraction 0.1
+  JointFlattenOptions opt;  // coarsest gap 1e-2, finest gap 1e-5, gap_fraction 0.1
   std::vector<JointFlattenIteration> its(1);
   its[0].energy = 1000;
-  EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-3);  // first subproblem: the outer tolerance
-  its.emplace_back().energy = 10;                    // a 99x gain: clamped to the outer tolerance
-  EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-3);
-  its.emplace_back().energy = 10 / (1 + 4e-3);  // relative gain 4e-3: a tenth of it
+  EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-2);  // first subproblem: the coarsest gap
+  its.emplace_back().energy = 10;                    // a 99x gain: clamped to the coarsest gap
+  EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-2);
+  its.emplace_back().energy = 10 / (1 + 0.05);  // relative gain 5e-2: a tenth of it
+  EXPECT_NEAR(subproblem_gap(opt, its), 5e-3, 1e-15);
+  its.emplace_back().energy = its.back().energy / (1 + 4e-3);  // relative gain 4e-3: a tenth of it
   EXPECT_NEAR(subproblem_gap(opt, its), 4e-4, 1e-15);
   its.emplace_back().energy = its.back().energy * (1 - 1e-6);  // tiny gain: never finer than solver.relative_gap
   EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-5);
@@ -167,7 +169,7 @@ TEST(flatten_joint, AdaptiveGapIsRecordedAndKeepsTheInvariants) {
   opt.max_iterations = 4;
   const JointFlattenResult r = joint_flatten(a.flattening_disk(), b.flattening_disk(), opt);
   ASSERT_GE(r.iterations.size(), 3u);
-  EXPECT_DOUBLE_EQ(r.iterations[1].subproblem_gap, opt.relative_tolerance);
+  EXPECT_DOUBLE_EQ(r.iterations[1].subproblem_gap, opt.max_subproblem_gap);
   for (size_t i = 1; i < r.iterations.size(); ++i) {
     EXPECT_EQ(r.iterations[i].subproblem_gap, subproblem_gap(opt, {r.iterations.begin(), r.iterations.begin() + i}));
     EXPECT_LE(r.iterations[i].energy, r.iterations[i - 1].energy);
