@@ -241,8 +241,11 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
   // The fill-reducing ordering, postordered: METIS's nested dissection for large systems, else CHOLMOD's default
   // (AMD). CHOLMOD's default keeps AMD on the flattening systems, whose fill it finds acceptable, but nested
   // dissection needs fewer flops on these 2D-mesh graphs: camel-cow (46k unknowns) 1.33e8 against 1.54e8 per
-  // factorisation (18.4 against 19.8 ms), fandisk-bunny (105k) 5.97e8 against 8.09e8 (70 against 81 ms), for
-  // 0.16-0.35 s more analysis, once per flattening. On small systems the analysis would cost more than it saves.
+  // factorisation, fandisk-bunny (105k) 5.97e8 against 8.09e8, for 0.16-0.35 s more analysis, once per
+  // flattening. Measured side by side (profile_flatten, fandisk-bunny, 2 outer iterations, 81 factorisations):
+  // 4.71-5.04 s of factorisation against 5.24-5.38 s with AMD, but the flattening as a whole equal within the
+  // noise (14.6-15.3 s against 14.9-15.1 s); camel-cow equal (7.09-7.23 s against 7.12-7.32 s for 3 outer
+  // iterations). On small systems the analysis would cost more than the factorisations save.
   cholmod_sparse view = lower_view(A);
   const bool nested_dissection = m.n >= kNestedDissectionUnknowns;
   if (nested_dissection) {
