@@ -231,7 +231,8 @@ SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
-  if (A.rows() != A.cols() || !A.isCompressed()) throw PipelineError("sparse Cholesky: A must be square and compressed");
+  if (A.rows() != A.cols() || !A.isCompressed())
+    throw PipelineError("sparse Cholesky: A must be square and compressed");
   Impl& m = *impl_;
   if (m.L != nullptr) cholmod_free_factor(&m.L, &m.cm);
   if (m.B != nullptr) cholmod_free_sparse(&m.B, &m.cm);
@@ -265,7 +266,8 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
   m.perm.assign(p0, p0 + m.n);
   cholmod_free_factor(&L0, &m.cm);
   std::vector<int> inverse(static_cast<size_t>(m.n));
-  for (Eigen::Index i = 0; i < m.n; ++i) inverse[static_cast<size_t>(m.perm[static_cast<size_t>(i)])] = static_cast<int>(i);
+  for (Eigen::Index i = 0; i < m.n; ++i)
+    inverse[static_cast<size_t>(m.perm[static_cast<size_t>(i)])] = static_cast<int>(i);
 
   // The lower triangle of P A P' in compressed columns, each value remembering where it comes from in A.
   struct Entry {

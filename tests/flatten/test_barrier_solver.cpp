@@ -59,7 +59,7 @@ Eigen::SparseMatrix<double> grid_system(int side, std::mt19937& rng) {
       for (int c = 0; c < 2; ++c) {
         // +W on both diagonal blocks, -W off the diagonal: the sum is positive semidefinite.
         trip.emplace_back(2 * b + r, 2 * a + c, -W(r, c));  // b > a: lower triangle
-        trip.emplace_back(2 * a + c, 2 * b + r, 7.0);        // upper triangle: not read
+        trip.emplace_back(2 * a + c, 2 * b + r, 7.0);       // upper triangle: not read
         if (r >= c) {
           trip.emplace_back(2 * a + r, 2 * a + c, W(r, c));
           trip.emplace_back(2 * b + r, 2 * b + c, W(r, c));
