@@ -211,16 +211,11 @@ void supernodal_solve(const cholmod_factor& L, double* y) {
   }
 }
 
-/// supernodal_solve on the columns of Y (row-major), three at a time.
-void supernodal_solve(const cholmod_factor& L, RowMajor& Y) {
-  for (Eigen::Index c0 = 0; c0 < Y.cols(); c0 += 3) {
-    const Eigen::Index k = std::min<Eigen::Index>(3, Y.cols() - c0);
-    RowMajor part = Y.middleCols(c0, k);
-    if (k == 3) supernodal_solve<3>(L, part.data());
-    if (k == 2) supernodal_solve<2>(L, part.data());
-    if (k == 1) supernodal_solve<1>(L, part.data());
-    Y.middleCols(c0, k) = part;
-  }
+/// supernodal_solve on k <= 3 columns, row-major.
+void supernodal_solve(const cholmod_factor& L, Eigen::Index k, double* y) {
+  if (k == 3) supernodal_solve<3>(L, y);
+  if (k == 2) supernodal_solve<2>(L, y);
+  if (k == 1) supernodal_solve<1>(L, y);
 }
 
 }  // namespace
@@ -254,13 +249,12 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
     m.cm.method[0].ordering = CHOLMOD_METIS;
   }
   cholmod_factor* L0 = cholmod_analyze(&view, &m.cm);
+  m.cm.nmethods = 0;  // CHOLMOD's defaults again
+  m.cm.method[0].ordering = CHOLMOD_GIVEN;
   if (nested_dissection && (L0 == nullptr || m.cm.status < CHOLMOD_OK)) {  // a CHOLMOD built without METIS
     if (L0 != nullptr) cholmod_free_factor(&L0, &m.cm);
-    m.cm.nmethods = 0;
     L0 = cholmod_analyze(&view, &m.cm);
   }
-  m.cm.nmethods = 0;
-  m.cm.method[0].ordering = CHOLMOD_GIVEN;
   if (L0 == nullptr || m.cm.status < CHOLMOD_OK) throw PipelineError("sparse Cholesky: symbolic analysis failed");
   const auto* p0 = static_cast<const int*>(L0->Perm);
   m.perm.assign(p0, p0 + m.n);
@@ -331,14 +325,20 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   const Impl& m = *impl_;
-  if (!m.analyzed || m.L->minor != m.L->n || !m.L->is_super || B.rows() != m.n) {
+  if (!m.analyzed || m.L->xtype == CHOLMOD_PATTERN || m.L->minor != m.L->n || !m.L->is_super || B.rows() != m.n) {
     throw PipelineError("sparse Cholesky: solve failed (no factorisation of this size)");
   }
-  RowMajor Y(m.n, B.cols());
-  for (Eigen::Index i = 0; i < m.n; ++i) Y.row(i) = B.row(m.perm[static_cast<size_t>(i)]);
-  supernodal_solve(*m.L, Y);
+  // Three columns at a time, permuted into a row-major block (one row per unknown: the solve's scattered
+  // accesses touch one cache line per row), and permuted back.
   Eigen::MatrixXd X(m.n, B.cols());
-  for (Eigen::Index i = 0; i < m.n; ++i) X.row(m.perm[static_cast<size_t>(i)]) = Y.row(i);
+  RowMajor Y;
+  for (Eigen::Index c0 = 0; c0 < B.cols(); c0 += 3) {
+    const Eigen::Index k = std::min<Eigen::Index>(3, B.cols() - c0);
+    Y.resize(m.n, k);
+    for (Eigen::Index i = 0; i < m.n; ++i) Y.row(i) = B.block(m.perm[static_cast<size_t>(i)], c0, 1, k);
+    supernodal_solve(*m.L, k, Y.data());
+    for (Eigen::Index i = 0; i < m.n; ++i) X.block(m.perm[static_cast<size_t>(i)], c0, 1, k) = Y.row(i);
+  }
   return X;
 }
 

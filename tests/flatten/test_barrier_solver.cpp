@@ -91,6 +91,8 @@ TEST(flatten_sparse_cholesky, SolvesLikeAnIndependentFactorisation) {
     Eigen::SparseMatrix<double> A = grid_system(side, rng);
     SparseCholesky chol;
     chol.analyze(A);
+    // Analysed but not yet factorised: nothing to solve with.
+    EXPECT_THROW((void)chol.solve(Eigen::MatrixXd::Ones(A.rows(), 1)), PipelineError);
     for (int round = 0; round < 2; ++round) {
       if (round == 1) {  // same pattern, new values
         for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
