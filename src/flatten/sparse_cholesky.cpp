@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <vector>
 
 #include "core/errors.h"
@@ -71,6 +72,17 @@ class SerialBlas {
 
 }  // namespace
 
+/// How solve() shares the supernodes between two threads (plan_solve).
+struct SolvePlan {
+  bool split = false;                      ///< false: one thread, all supernodes in order
+  std::array<std::vector<int>, 2> groups;  ///< supernodes of each thread's subtrees, ascending
+  std::vector<int> top;                    ///< the supernodes above both groups, ascending
+  std::vector<int> own_rows;               ///< per supernode of a group: its off-diagonal rows outside the top
+  std::vector<int> top_slot;               ///< per column: its index among the top's columns, or -1
+  std::vector<int> top_columns;            ///< the top's columns, by slot
+  std::array<double, 3> fractions{};       ///< stored values of the factor in group 0, group 1 and the top
+};
+
 // Supernodal LL^T: the fastest CHOLMOD mode for the 2D-mesh Laplacian-like systems of the flattening stage.
 //
 // CHOLMOD is given the matrix already permuted by its own fill-reducing ordering, and factorises it in natural
@@ -84,6 +96,7 @@ struct SparseCholesky::Impl {
   cholmod_sparse* B = nullptr;  // lower triangle of P A P', the matrix CHOLMOD factorises
   std::vector<int> perm;        // row i of P A P' is row perm[i] of A
   std::vector<int> source;      // B's k-th value is A's source[k]-th value
+  SolvePlan plan;               // how solve() splits the supernodes between two threads
   Eigen::Index n = 0, a_nonzeros = 0;
   bool analyzed = false;
 
@@ -140,82 +153,251 @@ cholmod_sparse lower_view(const Eigen::SparseMatrix<double>& A) {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// Solves L L^T Y = Y in place for a supernodal LL^T factor, K right-hand sides (the columns of the row-major Y).
-/// Per supernode: the dense triangle, then the rectangle below it as one dense product into a small buffer and
-/// one scattered update per row (forward), or one gather per row and dense dot products (backward). CHOLMOD's own
-/// supernodal solve calls BLAS twice per supernode and direction, which for the few right-hand sides of a Newton
-/// step costs more in call and buffer overhead than in arithmetic (camel-cow: 12 ms per solve of 3 columns
-/// against 25 ms per factorisation).
+/// A supernodal LL^T factor's arrays (CHOLMOD's layout): supernode s holds columns super[s] .. super[s+1]-1, its
+/// row indices are rows[pi[s] ..] (the diagonal block's own columns first) and its values the dense column-major
+/// block at x + px[s] (leading dimension nsrow).
+struct Supernodes {
+  const int* super;
+  const int* pi;
+  const int* px;
+  const int* rows;
+  const double* x;
+  int count;
+
+  explicit Supernodes(const cholmod_factor& L)
+      : super(static_cast<const int*>(L.super)),
+        pi(static_cast<const int*>(L.pi)),
+        px(static_cast<const int*>(L.px)),
+        rows(static_cast<const int*>(L.s)),
+        x(static_cast<const double*>(L.x)),
+        count(static_cast<int>(L.nsuper)) {}
+  [[nodiscard]] int columns(int s) const { return super[s + 1] - super[s]; }
+  [[nodiscard]] int rows_of(int s) const { return pi[s + 1] - pi[s]; }
+};
+
+// The triangular solves: per supernode, the dense triangle, then the rectangle below it as one dense product into
+// a small buffer and one scattered update per row (forward), or one gather per row and dense dot products
+// (backward). CHOLMOD's own supernodal solve calls BLAS twice per supernode and direction, which for the few
+// right-hand sides of a Newton step costs more in call and buffer overhead than in arithmetic (camel-cow: 12 ms
+// per solve of 3 columns against 25 ms per factorisation). Y is row-major with K columns.
+
+/// Forward step of supernode s (L Z = Y), K right-hand sides. The first `own` off-diagonal rows are updated in y;
+/// the others (columns of the top of the tree, when two threads share the solve) in the private `top` block, at
+/// their top_slot.
 template <int K>
-void supernodal_solve(const cholmod_factor& L, double* y) {
-  const auto* super = static_cast<const int*>(L.super);
-  const auto* pi = static_cast<const int*>(L.pi);
-  const auto* px = static_cast<const int*>(L.px);
-  const auto* rows = static_cast<const int*>(L.s);
-  const auto* x = static_cast<const double*>(L.x);
-  const auto nsuper = static_cast<int>(L.nsuper);
-  std::vector<double> w(L.maxesize * K);
-  // Forward: L Z = Y. Column j of supernode s has its diagonal at local row j and its rows at rows[pi[s] ..].
-  for (int s = 0; s < nsuper; ++s) {
-    const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s], m = nsrow - nscol;
-    const double* ls = x + px[s];
-    double* y1 = y + static_cast<ptrdiff_t>(k1) * K;
-    for (int j = 0; j < nscol; ++j) {
-      const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow;
-      for (int c = 0; c < K; ++c) y1[j * K + c] /= col[j];
-      for (int i = j + 1; i < nscol; ++i) {
-        for (int c = 0; c < K; ++c) y1[i * K + c] -= col[i] * y1[j * K + c];
-      }
-    }
-    if (m == 0) continue;
-    std::fill(w.begin(), w.begin() + static_cast<ptrdiff_t>(m) * K, 0.0);
-    for (int j = 0; j < nscol; ++j) {
-      const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow + nscol;
-      for (int i = 0; i < m; ++i) {
-        for (int c = 0; c < K; ++c) w[static_cast<size_t>(i * K + c)] += col[i] * y1[j * K + c];
-      }
-    }
-    const int* r = rows + pi[s] + nscol;
-    for (int i = 0; i < m; ++i) {
-      double* yi = y + static_cast<ptrdiff_t>(r[i]) * K;
-      for (int c = 0; c < K; ++c) yi[c] -= w[static_cast<size_t>(i * K + c)];
+void forward_supernode(const Supernodes& L, int s, double* y, double* w, int own, double* top, const int* top_slot) {
+  const int k1 = L.super[s], nscol = L.columns(s), nsrow = L.rows_of(s), m = nsrow - nscol;
+  const double* ls = L.x + L.px[s];
+  double* y1 = y + static_cast<ptrdiff_t>(k1) * K;
+  for (int j = 0; j < nscol; ++j) {
+    const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow;
+    for (int c = 0; c < K; ++c) y1[j * K + c] /= col[j];
+    for (int i = j + 1; i < nscol; ++i) {
+      for (int c = 0; c < K; ++c) y1[i * K + c] -= col[i] * y1[j * K + c];
     }
   }
-  // Backward: L^T X = Z.
-  for (int s = nsuper - 1; s >= 0; --s) {
-    const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s], m = nsrow - nscol;
-    const double* ls = x + px[s];
-    double* y1 = y + static_cast<ptrdiff_t>(k1) * K;
-    if (m > 0) {
-      const int* r = rows + pi[s] + nscol;
+  if (m == 0) return;
+  std::fill(w, w + static_cast<ptrdiff_t>(m) * K, 0.0);
+  for (int j = 0; j < nscol; ++j) {
+    const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow + nscol;
+    for (int i = 0; i < m; ++i) {
+      for (int c = 0; c < K; ++c) w[i * K + c] += col[i] * y1[j * K + c];
+    }
+  }
+  const int* r = L.rows + L.pi[s] + nscol;
+  for (int i = 0; i < own; ++i) {
+    double* yi = y + static_cast<ptrdiff_t>(r[i]) * K;
+    for (int c = 0; c < K; ++c) yi[c] -= w[i * K + c];
+  }
+  for (int i = own; i < m; ++i) {
+    double* yi = top + static_cast<ptrdiff_t>(top_slot[r[i]]) * K;
+    for (int c = 0; c < K; ++c) yi[c] -= w[i * K + c];
+  }
+}
+
+/// Backward step of supernode s (L^T X = Z): reads the solution at its off-diagonal rows, which belong to later
+/// supernodes (its ancestors), and writes its own columns.
+template <int K>
+void backward_supernode(const Supernodes& L, int s, double* y, double* w) {
+  const int k1 = L.super[s], nscol = L.columns(s), nsrow = L.rows_of(s), m = nsrow - nscol;
+  const double* ls = L.x + L.px[s];
+  double* y1 = y + static_cast<ptrdiff_t>(k1) * K;
+  if (m > 0) {
+    const int* r = L.rows + L.pi[s] + nscol;
+    for (int i = 0; i < m; ++i) {
+      const double* yi = y + static_cast<ptrdiff_t>(r[i]) * K;
+      for (int c = 0; c < K; ++c) w[i * K + c] = yi[c];
+    }
+    for (int j = 0; j < nscol; ++j) {
+      const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow + nscol;
+      std::array<double, K> acc{};
       for (int i = 0; i < m; ++i) {
-        const double* yi = y + static_cast<ptrdiff_t>(r[i]) * K;
-        for (int c = 0; c < K; ++c) w[static_cast<size_t>(i * K + c)] = yi[c];
+        for (int c = 0; c < K; ++c) acc[static_cast<size_t>(c)] += col[i] * w[i * K + c];
       }
-      for (int j = 0; j < nscol; ++j) {
-        const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow + nscol;
-        std::array<double, K> acc{};
-        for (int i = 0; i < m; ++i) {
-          for (int c = 0; c < K; ++c) acc[static_cast<size_t>(c)] += col[i] * w[static_cast<size_t>(i * K + c)];
-        }
-        for (int c = 0; c < K; ++c) y1[j * K + c] -= acc[static_cast<size_t>(c)];
-      }
+      for (int c = 0; c < K; ++c) y1[j * K + c] -= acc[static_cast<size_t>(c)];
     }
-    for (int j = nscol - 1; j >= 0; --j) {
-      const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow;
-      for (int i = j + 1; i < nscol; ++i) {
-        for (int c = 0; c < K; ++c) y1[j * K + c] -= col[i] * y1[i * K + c];
-      }
-      for (int c = 0; c < K; ++c) y1[j * K + c] /= col[j];
+  }
+  for (int j = nscol - 1; j >= 0; --j) {
+    const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow;
+    for (int i = j + 1; i < nscol; ++i) {
+      for (int c = 0; c < K; ++c) y1[j * K + c] -= col[i] * y1[i * K + c];
     }
+    for (int c = 0; c < K; ++c) y1[j * K + c] /= col[j];
+  }
+}
+
+/// Solves L L^T Y = Y in place, K right-hand sides (row-major Y). With a split plan the two groups of independent
+/// subtrees go to two threads (forward: each keeps its updates of the top's rows in a block of its own, added in
+/// afterwards), the top in between on one.
+template <int K>
+void supernodal_solve(const cholmod_factor& factor, const SolvePlan& plan, double* y) {
+  const Supernodes L(factor);
+  const size_t wsize = factor.maxesize * K;
+  if (!plan.split) {
+    std::vector<double> w(wsize);
+    for (int s = 0; s < L.count; ++s)
+      forward_supernode<K>(L, s, y, w.data(), L.rows_of(s) - L.columns(s), nullptr, nullptr);
+    for (int s = L.count - 1; s >= 0; --s) backward_supernode<K>(L, s, y, w.data());
+    return;
+  }
+  const auto n_top = static_cast<ptrdiff_t>(plan.top_columns.size());
+  std::array<std::vector<double>, 2> top;
+#pragma omp parallel for num_threads(2) schedule(static, 1)
+  for (int g = 0; g < 2; ++g) {
+    std::vector<double> w(wsize);
+    auto& mine = top[static_cast<size_t>(g)];
+    mine.assign(static_cast<size_t>(n_top * K), 0.0);
+    for (const int s : plan.groups[static_cast<size_t>(g)]) {
+      forward_supernode<K>(L, s, y, w.data(), plan.own_rows[static_cast<size_t>(s)], mine.data(), plan.top_slot.data());
+    }
+  }
+  for (ptrdiff_t k = 0; k < n_top; ++k) {
+    double* yk = y + static_cast<ptrdiff_t>(plan.top_columns[static_cast<size_t>(k)]) * K;
+    for (int c = 0; c < K; ++c)
+      yk[c] += top[0][static_cast<size_t>(k * K + c)] + top[1][static_cast<size_t>(k * K + c)];
+  }
+  std::vector<double> w(wsize);
+  for (const int s : plan.top) forward_supernode<K>(L, s, y, w.data(), L.rows_of(s) - L.columns(s), nullptr, nullptr);
+  for (auto it = plan.top.rbegin(); it != plan.top.rend(); ++it) backward_supernode<K>(L, *it, y, w.data());
+#pragma omp parallel for num_threads(2) schedule(static, 1)
+  for (int g = 0; g < 2; ++g) {
+    std::vector<double> wg(wsize);
+    const auto& group = plan.groups[static_cast<size_t>(g)];
+    for (auto it = group.rbegin(); it != group.rend(); ++it) backward_supernode<K>(L, *it, y, wg.data());
   }
 }
 
 /// supernodal_solve on k <= 3 columns, row-major.
-void supernodal_solve(const cholmod_factor& L, Eigen::Index k, double* y) {
-  if (k == 3) supernodal_solve<3>(L, y);
-  if (k == 2) supernodal_solve<2>(L, y);
-  if (k == 1) supernodal_solve<1>(L, y);
+void supernodal_solve(const cholmod_factor& L, const SolvePlan& plan, Eigen::Index k, double* y) {
+  if (k == 3) supernodal_solve<3>(L, plan, y);
+  if (k == 2) supernodal_solve<2>(L, plan, y);
+  if (k == 1) supernodal_solve<1>(L, plan, y);
+}
+
+/// Splits the supernodal elimination tree for solve(): the top (the supernodes whose subtrees are too heavy to
+/// give to one thread, from the roots down) and below it two groups of whole subtrees, of about equal numbers of
+/// stored values (the solve reads each once per direction and is bound by memory bandwidth). Independent subtrees
+/// touch disjoint unknowns except the top's. No split (plan.split false) if the top would hold more than a fifth
+/// of the values or the groups stay more unequal than 60:40.
+SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
+  const Supernodes L(factor);
+  const int ns = L.count;
+  SolvePlan plan;
+  if (ns < 2) return {};
+  std::vector<int> supernode_of(static_cast<size_t>(n));
+  for (int s = 0; s < ns; ++s)
+    std::fill(&supernode_of[static_cast<size_t>(L.super[s])],
+              &supernode_of[static_cast<size_t>(L.super[s + 1] - 1)] + 1, s);
+  std::vector<int> parent(static_cast<size_t>(ns), -1), first(static_cast<size_t>(ns));
+  std::vector<double> weight(static_cast<size_t>(ns));  // stored values of the subtree
+  std::vector<std::vector<int>> children(static_cast<size_t>(ns));
+  std::vector<int> frontier;
+  std::iota(first.begin(), first.end(), 0);  // the first supernode of each subtree (postorder: contiguous)
+  for (int s = 0; s < ns; ++s) {
+    const auto us = static_cast<size_t>(s);
+    weight[us] += static_cast<double>(L.rows_of(s)) * L.columns(s);
+    if (L.rows_of(s) > L.columns(s)) {
+      const int p = supernode_of[static_cast<size_t>(L.rows[L.pi[s] + L.columns(s)])];
+      if (p <= s) return {};  // not postordered: no split
+      parent[us] = p;
+      weight[static_cast<size_t>(p)] += weight[us];
+      first[static_cast<size_t>(p)] = std::min(first[static_cast<size_t>(p)], first[us]);
+      children[static_cast<size_t>(p)].push_back(s);
+    } else {
+      frontier.push_back(s);
+    }
+  }
+  double total = 0;
+  for (const int r : frontier) total += weight[static_cast<size_t>(r)];
+  std::vector<char> is_top(static_cast<size_t>(ns), 0);
+  double top_weight = 0;
+  std::array<std::vector<int>, 2> bins;
+  for (;;) {
+    // Heaviest subtrees first, each into the lighter bin.
+    std::sort(frontier.begin(), frontier.end(),
+              [&](int a, int b) { return weight[static_cast<size_t>(a)] > weight[static_cast<size_t>(b)]; });
+    std::array<double, 2> load{0, 0};
+    bins = {};
+    for (const int f : frontier) {
+      const size_t b = load[0] <= load[1] ? 0 : 1;
+      load[b] += weight[static_cast<size_t>(f)];
+      bins[b].push_back(f);
+    }
+    if (!bins[1].empty() && std::max(load[0], load[1]) <= 0.6 * (load[0] + load[1])) break;
+    // Too unequal: the heaviest subtree's root joins the top, its children the frontier.
+    const int h = frontier.front();
+    const auto uh = static_cast<size_t>(h);
+    if (children[uh].empty()) return {};
+    top_weight += static_cast<double>(L.rows_of(h)) * L.columns(h);
+    if (top_weight > 0.2 * total) return {};
+    is_top[uh] = 1;
+    frontier.erase(frontier.begin());
+    frontier.insert(frontier.end(), children[uh].begin(), children[uh].end());
+  }
+  std::vector<int> group(static_cast<size_t>(ns), -1);
+  for (size_t b = 0; b < 2; ++b) {
+    for (const int f : bins[b]) {
+      std::fill(&group[static_cast<size_t>(first[static_cast<size_t>(f)])], &group[static_cast<size_t>(f)] + 1,
+                static_cast<int>(b));
+    }
+  }
+  plan.top_slot.assign(static_cast<size_t>(n), -1);
+  for (int s = 0; s < ns; ++s) {
+    const auto us = static_cast<size_t>(s);
+    if (group[us] >= 0) {
+      plan.groups[static_cast<size_t>(group[us])].push_back(s);
+      continue;
+    }
+    if (!is_top[us]) return {};  // neither in a group nor above them: cannot happen in a tree, but no split then
+    plan.top.push_back(s);
+    for (int k = L.super[s]; k < L.super[s + 1]; ++k) {
+      plan.top_slot[static_cast<size_t>(k)] = static_cast<int>(plan.top_columns.size());
+      plan.top_columns.push_back(k);
+    }
+  }
+  plan.own_rows.assign(static_cast<size_t>(ns), 0);
+  // A subtree's off-diagonal rows are its ancestors: first those inside the subtree, then (higher) the top's.
+  for (int b = 0; b < 2; ++b) {
+    for (const int s : plan.groups[static_cast<size_t>(b)]) {
+      const int* r = L.rows + L.pi[s] + L.columns(s);
+      const int m = L.rows_of(s) - L.columns(s);
+      int own = 0;
+      while (own < m && plan.top_slot[static_cast<size_t>(r[own])] < 0) {
+        if (group[static_cast<size_t>(supernode_of[static_cast<size_t>(r[own])])] != b) return {};
+        ++own;
+      }
+      for (int i = own; i < m; ++i) {
+        if (plan.top_slot[static_cast<size_t>(r[i])] < 0) return {};
+      }
+      plan.own_rows[static_cast<size_t>(s)] = own;
+    }
+  }
+  plan.split = true;
+  plan.fractions = {0, 0, top_weight / total};
+  for (size_t b = 0; b < 2; ++b) {
+    for (const int f : bins[b]) plan.fractions[b] += weight[static_cast<size_t>(f)] / total;
+  }
+  return plan;
 }
 
 }  // namespace
@@ -304,6 +486,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
   if (m.L == nullptr || m.cm.status < CHOLMOD_OK || m.L->ordering != CHOLMOD_NATURAL) {
     throw PipelineError("sparse Cholesky: symbolic analysis failed");
   }
+  m.plan = plan_solve(*m.L, m.n);
   m.analyzed = true;
 }
 
@@ -336,12 +519,17 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
     const Eigen::Index k = std::min<Eigen::Index>(3, B.cols() - c0);
     Y.resize(m.n, k);
     for (Eigen::Index i = 0; i < m.n; ++i) Y.row(i) = B.block(m.perm[static_cast<size_t>(i)], c0, 1, k);
-    supernodal_solve(*m.L, k, Y.data());
+    supernodal_solve(*m.L, m.plan, k, Y.data());
     for (Eigen::Index i = 0; i < m.n; ++i) X.block(m.perm[static_cast<size_t>(i)], c0, 1, k) = Y.row(i);
   }
   return X;
 }
 
 bool SparseCholesky::analyzed() const { return impl_->analyzed; }
+
+SparseCholesky::SolveSplit SparseCholesky::solve_split() const {
+  const SolvePlan& p = impl_->plan;
+  return {p.split, p.fractions[0], p.fractions[1], p.fractions[2]};
+}
 
 }  // namespace liftmap

@@ -12,7 +12,8 @@ namespace liftmap {
 
 /// Cholesky factorisation of a sparse SPD matrix that keeps its symbolic analysis across refactorisations.
 /// Only the lower triangle of the matrix is read. Usage: `analyze(A)` once, then `factorize(A)` whenever the
-/// values change (same pattern), then `solve(b)` any number of times.
+/// values change (same pattern), then `solve(b)` any number of times. solve() runs on two threads where the elimination
+/// tree splits into two halves (solve_split).
 class SparseCholesky {
  public:
   SparseCholesky();
@@ -31,6 +32,15 @@ class SparseCholesky {
   /// Solves `A X = B` for the last factorised `A`; `B` is n by k.
   [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   [[nodiscard]] bool analyzed() const;
+
+  /// How solve() shares its work between two threads: two groups of independent subtrees of the elimination
+  /// tree, one per thread, and the top of the tree above them on one (fractions of the factor's stored values).
+  struct SolveSplit {
+    bool split = false;  ///< false: the solve runs on one thread (small or unbalanced tree)
+    double group0 = 0, group1 = 0, top = 0;
+  };
+  /// The split found by analyze().
+  [[nodiscard]] SolveSplit solve_split() const;
 
  private:
   struct Impl;

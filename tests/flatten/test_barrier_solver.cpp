@@ -83,14 +83,23 @@ Eigen::SparseMatrix<double> grid_system(int side, std::mt19937& rng) {
 }
 
 // The factorisation and our supernodal solve against Eigen's simplicial LDL^T on the same lower triangle: on a
-// small system (AMD ordering) and one above the nested-dissection threshold (METIS), with 1 to 7 right-hand sides,
-// after a refactorisation with new values, and a matrix that is not positive definite.
+// small system (AMD ordering) and one above the nested-dissection threshold (METIS, solved on two threads), with
+// 1 to 7 right-hand sides, after a refactorisation with new values, and a matrix that is not positive definite.
 TEST(flatten_sparse_cholesky, SolvesLikeAnIndependentFactorisation) {
   std::mt19937 rng(7);
   for (const int side : {40, 110}) {
     Eigen::SparseMatrix<double> A = grid_system(side, rng);
     SparseCholesky chol;
     chol.analyze(A);
+    // The larger grid's elimination tree splits into two halves for a two-threaded solve, with a small top.
+    const SparseCholesky::SolveSplit split = chol.solve_split();
+    if (side == 110) {
+      ASSERT_TRUE(split.split);
+      EXPECT_GT(std::min(split.group0, split.group1), 0.35);
+      EXPECT_GT(split.top, 0);
+      EXPECT_LT(split.top, 0.2);
+      EXPECT_NEAR(split.group0 + split.group1 + split.top, 1, 1e-12);
+    }
     // Analysed but not yet factorised: nothing to solve with.
     EXPECT_THROW((void)chol.solve(Eigen::MatrixXd::Ones(A.rows(), 1)), PipelineError);
     for (int round = 0; round < 2; ++round) {
