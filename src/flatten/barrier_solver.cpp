@@ -467,6 +467,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   const Settings& st = s.settings;
   Pattern pattern = make_pattern(s);
   if (!cholesky.analyzed()) cholesky.analyze(pattern.A);
+  const FacePartition parts = partition_faces(s, cholesky);
 
   // Strictly feasible start for the auxiliaries: c between |(gamma,delta)| and alpha cos + beta sin.
   State z;
@@ -555,7 +556,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       corner_rows[static_cast<size_t>(j)].noalias() = fsys.B * (fsys.Pinv * Ry.block<2, 3>(2 * j, 0));
     }
     Eigen::MatrixXd Rt = Rx;
-    subtract_corner_rows<3>(s, corner_rows, Rt);
+    subtract_corner_rows<3>(s, parts, corner_rows, Rt);
     Dx = cholesky.solve(Rt);
     Dy.resize(2 * nf, 3);
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
@@ -681,13 +682,16 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         fsys.h_tt = H(kT, kT);
         fsys.g_t = g(kT);
       }
-      // Assemble the Schur system and the gradient.
+      // Assemble the Schur system and the gradient: the faces of the two halves of the factorisation's split on two
+      // threads (FacePartition), the rest after them.
       double* values = pattern.A.valuePtr();
-      std::fill(values, values + pattern.A.nonZeros(), 0.0);
+      const Eigen::Index n_values = pattern.A.nonZeros();
+#pragma omp parallel for schedule(static) if (n_values > 100000)
+      for (Eigen::Index k = 0; k < n_values; ++k) values[k] = 0;
       Eigen::VectorXd gx = Eigen::VectorXd::Zero(nv);
       Eigen::VectorXd gy(2 * nf);
-      std::array<double, 2> g_t{t, t}, h_tt{0, 0};
-      for (int j = 0; j < nf; ++j) {
+      std::array<std::array<double, 2>, 3> list_g_t{}, list_h_tt{};  // per face list, summed in list order below
+      for_each_face_partitioned(parts, [&](int j, int list) {
         const FaceSystem& fsys = sys[static_cast<size_t>(j)];
         const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
         const auto& idx = pattern.index[static_cast<size_t>(j)];
@@ -700,9 +704,16 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
           }
         }
         gy.segment<2>(2 * j) = fsys.gy;
-        if (fs.ghost()) continue;
-        g_t[static_cast<size_t>(fs.mesh)] += fsys.g_t;
-        h_tt[static_cast<size_t>(fs.mesh)] += fsys.h_tt;
+        if (fs.ghost()) return;
+        list_g_t[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.g_t;
+        list_h_tt[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.h_tt;
+      });
+      std::array<double, 2> g_t{t, t}, h_tt{0, 0};
+      for (size_t list = 0; list < 3; ++list) {
+        for (size_t m = 0; m < 2; ++m) {
+          g_t[m] += list_g_t[list][m];
+          h_tt[m] += list_h_tt[list][m];
+        }
       }
       if (!st.p_inf) {  // derivatives of t T_m - log(T_m^2 - S_m) in T_m (the first is 0 at the optimal T_m)
         for (size_t m = 0; m < 2; ++m) {

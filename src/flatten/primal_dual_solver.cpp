@@ -268,6 +268,7 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
   set_ghost_bounds(it.pos, s);
   Pattern pattern = make_pattern(s);
   if (!cholesky.analyzed()) cholesky.analyze(pattern.A);
+  const FacePartition parts = partition_faces(s, cholesky);
 
   // Strictly feasible start: every cone's slack well inside (each auxiliary 1.5 times its lower bound).
   it.y.setZero(kAux, nf);
@@ -430,7 +431,7 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
           s.faces[static_cast<size_t>(j)].S.transpose() * (fsys.Cq.transpose() * t);
     }
     Eigen::MatrixXd Rt = Rx;
-    subtract_corner_rows<NC>(s, corner_rows, Rt);
+    subtract_corner_rows<NC>(s, parts, corner_rows, Rt);
     Dx = cholesky.solve(Rt);
     Dy.resize(kAux * nf, NC);
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)

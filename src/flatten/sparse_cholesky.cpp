@@ -80,6 +80,7 @@ struct SolvePlan {
   std::vector<int> own_rows;               ///< per supernode of a group: its off-diagonal rows outside the top
   std::vector<int> top_slot;               ///< per column: its index among the top's columns, or -1
   std::vector<int> top_columns;            ///< the top's columns, by slot
+  std::vector<signed char> column_half;    ///< per column: its group (0, 1) or -1 (top)
   std::array<double, 3> fractions{};       ///< stored values of the factor in group 0, group 1 and the top
 };
 
@@ -132,6 +133,10 @@ namespace {
 
 /// Systems with at least this many unknowns are ordered by nested dissection (METIS), smaller ones by AMD.
 constexpr Eigen::Index kNestedDissectionUnknowns = 20000;
+
+/// Systems with fewer unknowns are solved on one thread (and their callers' sums over faces stay on one):
+/// about the size where the flattening's per-face loops go parallel (subproblem::kParallelFaces, 4000 faces).
+constexpr Eigen::Index kParallelSolveUnknowns = 8000;
 
 /// A CHOLMOD view (no copy) of the lower triangle of A.
 cholmod_sparse lower_view(const Eigen::SparseMatrix<double>& A) {
@@ -298,12 +303,12 @@ void supernodal_solve(const cholmod_factor& L, const SolvePlan& plan, Eigen::Ind
 /// give to one thread, from the roots down) and below it two groups of whole subtrees, of about equal numbers of
 /// stored values (the solve reads each once per direction and is bound by memory bandwidth). Independent subtrees
 /// touch disjoint unknowns except the top's. No split (plan.split false) if the top would hold more than a fifth
-/// of the values or the groups stay more unequal than 60:40.
+/// of the values or the groups stay more unequal than 60:40, or below kParallelSolveUnknowns.
 SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
   const Supernodes L(factor);
   const int ns = L.count;
   SolvePlan plan;
-  if (ns < 2) return {};
+  if (ns < 2 || n < kParallelSolveUnknowns) return {};
   std::vector<int> supernode_of(static_cast<size_t>(n));
   for (int s = 0; s < ns; ++s)
     std::fill(&supernode_of[static_cast<size_t>(L.super[s])],
@@ -362,10 +367,13 @@ SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
     }
   }
   plan.top_slot.assign(static_cast<size_t>(n), -1);
+  plan.column_half.assign(static_cast<size_t>(n), -1);
   for (int s = 0; s < ns; ++s) {
     const auto us = static_cast<size_t>(s);
     if (group[us] >= 0) {
       plan.groups[static_cast<size_t>(group[us])].push_back(s);
+      std::fill(&plan.column_half[static_cast<size_t>(L.super[s])],
+                &plan.column_half[static_cast<size_t>(L.super[s + 1] - 1)] + 1, static_cast<signed char>(group[us]));
       continue;
     }
     if (!is_top[us]) return {};  // neither in a group nor above them: cannot happen in a tree, but no split then
@@ -526,6 +534,14 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
 }
 
 bool SparseCholesky::analyzed() const { return impl_->analyzed; }
+
+std::vector<signed char> SparseCholesky::unknown_halves() const {
+  const Impl& m = *impl_;
+  if (!m.plan.split) return {};
+  std::vector<signed char> halves(static_cast<size_t>(m.n));
+  for (size_t k = 0; k < halves.size(); ++k) halves[static_cast<size_t>(m.perm[k])] = m.plan.column_half[k];
+  return halves;
+}
 
 SparseCholesky::SolveSplit SparseCholesky::solve_split() const {
   const SolvePlan& p = impl_->plan;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <vector>
 
 namespace liftmap {
 
@@ -41,6 +42,11 @@ class SparseCholesky {
   };
   /// The split found by analyze().
   [[nodiscard]] SolveSplit solve_split() const;
+  /// Per unknown (row of A): 0 or 1, the half of the split its column is eliminated in, or -1 if in the top. Two
+  /// unknowns of different halves are never coupled in A, so sums into A's entries or into vectors over the
+  /// unknowns can run on two threads, one per half, with the entries that touch the top added afterwards. Empty
+  /// if the solve is not split.
+  [[nodiscard]] std::vector<signed char> unknown_halves() const;
 
  private:
   struct Impl;

@@ -93,6 +93,29 @@ Pattern make_pattern(const Setup& s) {
   return p;
 }
 
+FacePartition partition_faces(const Setup& s, const SparseCholesky& cholesky) {
+  FacePartition p;
+  const std::vector<signed char> halves = cholesky.unknown_halves();
+  for (int j = 0; j < s.n_faces; ++j) {
+    int list = 2;
+    if (!halves.empty()) {
+      int seen = -1;  // the half of the face's unknowns so far; 2 once one is in the top or two differ
+      for (const int v : s.faces[static_cast<size_t>(j)].var) {
+        if (v < 0) continue;
+        const int h = halves[static_cast<size_t>(v)];
+        if (h < 0 || (seen >= 0 && seen != h)) {
+          seen = 2;
+          break;
+        }
+        seen = h;
+      }
+      if (seen >= 0) list = seen;
+    }
+    p.lists[static_cast<size_t>(list)].push_back(j);
+  }
+  return p;
+}
+
 bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift) {
   if (last_shift == 0 && cholesky.factorize(A)) return true;
   const Eigen::VectorXd diag = A.diagonal();

@@ -78,17 +78,39 @@ Eigen::Matrix<double, 6, NC> gather_corners(const FaceSetup& fs, const Eigen::Ma
   return out;
 }
 
-/// X.row(v) -= rows[j].row(r) for every corner coordinate r (unknown v) of every face j; serial, faces share
-/// vertices.
+/// The faces in three lists for sums over faces into the Schur system and vectors over the unknowns, which faces
+/// sharing a vertex would race on: lists[h] holds the faces whose unknowns all lie in half h of the factorisation's
+/// split (SparseCholesky::unknown_halves; no face couples the two halves), lists[2] the others (a vertex in the
+/// top of the elimination tree), each list in face order. Without a split, every face is in lists[2].
+struct FacePartition {
+  std::array<std::vector<int>, 3> lists;
+};
+FacePartition partition_faces(const Setup& s, const SparseCholesky& cholesky);
+
+/// Runs fn(j, list) for every face j: the faces of lists[0] and lists[1] on two threads, one list each, then those
+/// of lists[2] on this one. fn may add into the entries of its face's unknowns.
+template <class Fn>
+void for_each_face_partitioned(const FacePartition& p, Fn&& fn) {
+  if (!p.lists[0].empty() || !p.lists[1].empty()) {
+#pragma omp parallel for num_threads(2) schedule(static, 1)
+    for (int h = 0; h < 2; ++h) {
+      for (const int j : p.lists[static_cast<size_t>(h)]) fn(j, h);
+    }
+  }
+  for (const int j : p.lists[2]) fn(j, 2);
+}
+
+/// X.row(v) -= rows[j].row(r) for every corner coordinate r (unknown v) of every face j.
 template <int NC>
-void subtract_corner_rows(const Setup& s, const std::vector<Eigen::Matrix<double, 6, NC>>& rows, Eigen::MatrixXd& X) {
-  for (int j = 0; j < s.n_faces; ++j) {
+void subtract_corner_rows(const Setup& s, const FacePartition& p, const std::vector<Eigen::Matrix<double, 6, NC>>& rows,
+                          Eigen::MatrixXd& X) {
+  for_each_face_partitioned(p, [&](int j, int /*list*/) {
     const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
     for (int r = 0; r < 6; ++r) {
       const int v = fs.var[static_cast<size_t>(r)];
       if (v >= 0) X.row(v) -= rows[static_cast<size_t>(j)].row(r);
     }
-  }
+  });
 }
 
 /// Factorises the Schur system A. Rounding in the eliminated blocks of nearly active constraints can make it

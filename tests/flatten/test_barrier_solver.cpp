@@ -13,6 +13,7 @@
 #include "flatten/flattening_checks.h"
 #include "flatten/joint_flatten.h"
 #include "flatten/sparse_cholesky.h"
+#include "flatten/subproblem_faces.h"
 
 namespace liftmap {
 namespace {
@@ -131,6 +132,65 @@ TEST(flatten_sparse_cholesky, SolvesLikeAnIndependentFactorisation) {
     // A matrix of another pattern is refused rather than misread.
     EXPECT_THROW((void)chol.factorize(grid_system(side - 1, rng)), PipelineError);
   }
+}
+
+// The faces of a 110 x 110 grid (two unknowns per vertex, vertex 0 fixed) split by the factorisation's halves: every
+// face in exactly one list, the faces of lists 0 and 1 entirely inside their half, and the scatter over the three
+// lists (two of them on two threads) equal to the serial one.
+TEST(flatten_sparse_cholesky, FacePartitionFollowsTheHalves) {
+  const int side = 110;
+  subproblem::Setup s;
+  auto var = [](int v, int k) { return v == 0 ? -1 : 2 * v + k - 2; };
+  for (int i = 0; i + 1 < side; ++i) {
+    for (int j = 0; j + 1 < side; ++j) {
+      const int v = i * side + j;
+      for (const std::array<int, 3> tri :
+           {std::array<int, 3>{v, v + 1, v + side + 1}, std::array<int, 3>{v, v + side + 1, v + side}}) {
+        subproblem::FaceSetup fs;
+        for (int c = 0; c < 3; ++c) {
+          fs.var[static_cast<size_t>(2 * c)] = var(tri[static_cast<size_t>(c)], 0);
+          fs.var[static_cast<size_t>(2 * c + 1)] = var(tri[static_cast<size_t>(c)], 1);
+        }
+        s.faces.push_back(fs);
+      }
+    }
+  }
+  s.n_faces = static_cast<int>(s.faces.size());
+  s.n_var = 2 * side * side - 2;
+  const subproblem::Pattern pattern = subproblem::make_pattern(s);
+  SparseCholesky chol;
+  chol.analyze(pattern.A);
+  const std::vector<signed char> halves = chol.unknown_halves();
+  ASSERT_EQ(halves.size(), static_cast<size_t>(s.n_var));
+  const subproblem::FacePartition parts = subproblem::partition_faces(s, chol);
+  std::vector<int> seen(static_cast<size_t>(s.n_faces), 0);
+  for (int list = 0; list < 3; ++list) {
+    for (const int j : parts.lists[static_cast<size_t>(list)]) {
+      ++seen[static_cast<size_t>(j)];
+      if (list == 2) continue;
+      for (const int v : s.faces[static_cast<size_t>(j)].var) {
+        if (v >= 0) EXPECT_EQ(halves[static_cast<size_t>(v)], list) << "face " << j;
+      }
+    }
+  }
+  for (const int count : seen) ASSERT_EQ(count, 1);
+  EXPECT_GT(parts.lists[0].size(), s.faces.size() / 3);
+  EXPECT_GT(parts.lists[1].size(), s.faces.size() / 3);
+  EXPECT_LT(parts.lists[2].size(), s.faces.size() / 10);
+  // No two faces of different halves share an unknown, so the two threads never write the same row.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Matrix<double, 6, 3>> rows(static_cast<size_t>(s.n_faces));
+  for (auto& r : rows) r = r.unaryExpr([&](double) { return u(rng); });
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(s.n_var, 3), expected = X;
+  subproblem::subtract_corner_rows<3>(s, parts, rows, X);
+  for (int j = 0; j < s.n_faces; ++j) {
+    for (int r = 0; r < 6; ++r) {
+      const int v = s.faces[static_cast<size_t>(j)].var[static_cast<size_t>(r)];
+      if (v >= 0) expected.row(v) -= rows[static_cast<size_t>(j)].row(r);
+    }
+  }
+  EXPECT_LT((X - expected).norm(), 1e-12 * expected.norm());
 }
 
 using testing::Combo;
