@@ -6,7 +6,8 @@
 // line is then one of its iterations, with t = 1 / mu); PROFILE_P_INF=1 solves for p = inf; PROFILE_GAP_FRACTION=x sets
 // JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap); PROFILE_START_GAP_FRACTION=x sets
 // JointFlattenOptions::start_gap_fraction (0: every subproblem starts at the usual barrier parameter);
-// PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap.
+// PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap; PROFILE_ISOTROPIC=0 turns off
+// BarrierOptions::isotropic_anticonformal_curvature.
 
 #include <chrono>
 #include <cstdio>
@@ -53,6 +54,8 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_GAP_FRACTION")) options.gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_START_GAP_FRACTION")) options.start_gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_MAX_SUBPROBLEM_GAP")) options.max_subproblem_gap = std::atof(g);
+  if (const char* g = std::getenv("PROFILE_ISOTROPIC"))
+    options.solver.isotropic_anticonformal_curvature = std::atoi(g) != 0;
   if (std::getenv("PROFILE_P_INF")) options.p = std::numeric_limits<double>::infinity();
   int outer = 1;
   struct Centring {

@@ -582,13 +582,16 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
     // centring_tolerance, because the next barrier parameter starts with Newton decrements of ~1e7 anyway.
     const bool last_centring = nu / t <= options.relative_gap * f0(z);
     bool roughly_centred = false;
+    // This step's Newton system gives every face's (gamma, delta) block isotropic curvature (p = 2,
+    // BarrierOptions::isotropic_anticonformal_curvature): set after a step that Armijo's condition shortened.
+    bool isotropic = false;
     for (;;) {
       if (result.newton_steps >= options.max_newton_steps) {
         done = true;
         break;
       }
       const auto step_start = std::chrono::steady_clock::now();
-      BarrierStep trace{.centring = result.centrings, .t = t};
+      BarrierStep trace{.centring = result.centrings, .t = t, .isotropic = isotropic};
       auto search_start = step_start;  // set when the line search starts
       auto report = [&](double step, bool repaired) {
         if (!options.on_step) return;
@@ -641,6 +644,20 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
           Haa -= Hay * fsys.Pinv * Hay.transpose();
         }
         Haa = 0.5 * (Haa + Haa.transpose());
+        if (isotropic && !fs.ghost()) {
+          // Raise the smaller curvature of the (gamma, delta) block to the larger one, along its eigenvector: the
+          // block stays positive semidefinite and only grows, so the step is still a descent direction.
+          const Eigen::Matrix2d G = Haa.block<2, 2>(2, 2);
+          const double half = 0.5 * G.trace();
+          const double disc = std::sqrt(std::max(0.0, half * half - G.determinant()));
+          const double lmax = half + disc, lmin = half - disc;
+          if (lmax > 0 && lmin < lmax) {
+            Eigen::Vector2d v(G(0, 1), lmin - G(0, 0));
+            if (!(v.norm() > 1e-300 * lmax)) v = G(0, 0) <= G(1, 1) ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1);
+            v.normalize();
+            Haa.block<2, 2>(2, 2) += (lmax - lmin) * v * v.transpose();
+          }
+        }
         // The exact Schur complement is positive semidefinite; rounding in the elimination of nearly active
         // constraints (huge, nearly cancelling terms) can leave negative eigenvalues: clamp them. Most blocks are
         // well conditioned, which a Cholesky factorisation shows at a fraction of an eigensolver's cost: with
@@ -812,13 +829,18 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         report(0, false);
         break;
       }
+      if (isotropic && lambda2 / 2 <= options.centring_tolerance) {
+        // The decrement of a modified system certifies nothing: redo the step with the true Newton system.
+        isotropic = false;
+        continue;
+      }
       if (lambda2 / 2 <= options.newton_tolerance ||
           (last_centring && lambda2 / 2 <= options.centring_tolerance &&
            gap_bound(nu, std::sqrt(lambda2), t) <= options.relative_gap * f0(z))) {
         report(0, false);
         break;
       }
-      roughly_centred = !last_centring && lambda2 / 2 <= options.centring_tolerance;
+      roughly_centred = !isotropic && !last_centring && lambda2 / 2 <= options.centring_tolerance;
 
       // Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds.
       // p = 2: the positions' step with the auxiliaries re-centred at each trial point (step_state_2), which lets
@@ -826,14 +848,19 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       // p = inf: first along the plain Newton direction; if that stops short, also with the auxiliaries repaired
       // (step_state_inf), where only the positions limit the step, and keep the point of lower merit.
       search_start = std::chrono::steady_clock::now();
+      bool merit_limited = false;  // the trial before the accepted one failed Armijo's condition, not feasibility
       auto line_search = [&](bool repair, State& out, double& merit) {
         double step = 1;
         for (int halvings = 0; halvings < 60; ++halvings, step *= 0.5) {
           const bool ok = st.p_inf ? step_state_inf(s, z, dx, dy, d_t, step, repair, out)
                                    : step_state_2(s, z, dx, dy, step, t, out);
-          if (!ok) continue;
+          if (!ok) {
+            merit_limited = false;
+            continue;
+          }
           merit = merit_difference(s, z, out, t);
           if (merit <= -0.25 * step * lambda2) return step;
+          merit_limited = true;
         }
         return 0.0;
       };
@@ -868,6 +895,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       // equal to 7 digits.
       z = std::move(zn);
       report(step, repaired);
+      isotropic = options.isotropic_anticonformal_curvature && !st.p_inf && step < 1 && merit_limited;
       if (roughly_centred) break;
     }
     ++result.centrings;

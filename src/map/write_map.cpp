@@ -87,6 +87,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"gap_fraction", options.flatten.gap_fraction},
       {"max_subproblem_gap", options.flatten.max_subproblem_gap},
       {"start_gap_fraction", options.flatten.start_gap_fraction},
+      {"isotropic_anticonformal_curvature", options.flatten.solver.isotropic_anticonformal_curvature},
       {"max_iterations", options.flatten.max_iterations},
       {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},
   };

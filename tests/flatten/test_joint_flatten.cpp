@@ -163,6 +163,39 @@ TEST(flatten_joint, InitialGapSkipsCentringsAndKeepsTheCertificate) {
   EXPECT_NEAR(r[1].objective, r[0].objective, solver.relative_gap * r[0].objective);
 }
 
+TEST(flatten_joint, IsotropicCurvatureAfterShortStepsKeepsTheOptimum) {
+  // The second subproblem of a real patch pair, solved with and without isotropic (gamma, delta) curvature after
+  // merit-limited steps: the modified steps happen, both solves are certified, and their optima agree within the gap.
+  const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 3000, 0, 1000);
+  JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), {});
+  ConvexSubproblem& sp = jp.subproblem;
+  SparseCholesky cholesky;
+  BarrierOptions solver;
+  solver.relative_gap = 1e-3;
+  Eigen::MatrixXd X = solve_convex_subproblem(sp, jp.X0, solver, cholesky).X;
+  place_ghost_vertices(sp, X);
+  set_rotations(sp, X);
+  solver.relative_gap = 1e-6;
+  BarrierResult r[2];
+  int isotropic_steps[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    BarrierOptions o = solver;
+    o.isotropic_anticonformal_curvature = k == 1;
+    o.on_step = [&](const BarrierStep& st) { isotropic_steps[k] += st.isotropic ? 1 : 0; };
+    r[k] = solve_convex_subproblem(sp, X, o, cholesky);
+    std::printf("  isotropic %d: %d Newton steps (%d isotropic), objective %.12g\n", k, r[k].newton_steps,
+                isotropic_steps[k], r[k].objective);
+    EXPECT_TRUE(r[k].converged);
+    for (int m = 0; m < 2; ++m) {
+      EXPECT_GT(signed_double_areas(jp.F[m], mesh_positions(sp, m, r[k].X)).minCoeff(), 0);
+    }
+  }
+  EXPECT_EQ(isotropic_steps[0], 0);
+  EXPECT_GT(isotropic_steps[1], 0) << "the instance no longer exercises the isotropic steps";
+  EXPECT_LT(r[1].newton_steps, r[0].newton_steps);
+  EXPECT_NEAR(r[1].objective, r[0].objective, solver.relative_gap * r[0].objective);
+}
+
 TEST(flatten_joint, AdaptiveGapIsRecordedAndKeepsTheInvariants) {
   const auto [a, b] = testing::patch_pair("camel.off", "cow.off", 1500, 0, 500);
   JointFlattenOptions opt;
