@@ -42,6 +42,9 @@ using Mat7 = Eigen::Matrix<double, 7, 7>;
 using Mat62 = Eigen::Matrix<double, 6, 2>;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// BarrierOptions::centring_tolerance for p = inf, whose repaired steps need centrings closer to the central path:
+/// at 2 (p = 2's), the p = inf instances of the differential test stopped short of their certified gap.
+constexpr double kPInfCentringTolerance = 0.125;
 /// Eigenvalue ratio below which a face's 4x4 Schur block counts as ill-conditioned (its product with the corner
 /// map is then cleaned of negative eigenvalues again).
 constexpr double kWellConditioned = 1e-8;
@@ -582,6 +585,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
     // centring_tolerance, because the next barrier parameter starts with Newton decrements of ~1e7 anyway.
     const bool last_centring = nu / t <= options.relative_gap * f0(z);
     bool roughly_centred = false;
+    const double centring_tolerance = st.p_inf ? kPInfCentringTolerance : options.centring_tolerance;
     // This step's Newton system gives every face's (gamma, delta) block isotropic curvature (p = 2,
     // BarrierOptions::isotropic_anticonformal_curvature): set after a step that Armijo's condition shortened.
     bool isotropic = false;
@@ -829,18 +833,18 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         report(0, false);
         break;
       }
-      if (isotropic && lambda2 / 2 <= options.centring_tolerance) {
+      if (isotropic && lambda2 / 2 <= centring_tolerance) {
         // The decrement of a modified system certifies nothing: redo the step with the true Newton system.
         isotropic = false;
         continue;
       }
       if (lambda2 / 2 <= options.newton_tolerance ||
-          (last_centring && lambda2 / 2 <= options.centring_tolerance &&
+          (last_centring && lambda2 / 2 <= centring_tolerance &&
            gap_bound(nu, std::sqrt(lambda2), t) <= options.relative_gap * f0(z))) {
         report(0, false);
         break;
       }
-      roughly_centred = !isotropic && !last_centring && lambda2 / 2 <= options.centring_tolerance;
+      roughly_centred = !isotropic && !last_centring && lambda2 / 2 <= centring_tolerance;
 
       // Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds.
       // p = 2: the positions' step with the auxiliaries re-centred at each trial point (step_state_2), which lets

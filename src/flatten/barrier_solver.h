@@ -80,10 +80,15 @@ struct BarrierOptions {
   /// polishing the decrement further cost late outer iterations of camel-cow 10-12 Newton steps (steps 58/67/61 ->
   /// 48/50/52 in outer iterations 7-9, flattening 60.0 -> 51.7 s, energies equal to 6 digits).
   double newton_tolerance = 1e-7;
-  /// Earlier centrings stop after the step from a point where lambda^2/2 is below this (lambda <= 1/2, the
-  /// long-step method's proximity to the central path): polishing them to newton_tolerance cost 2-4 Newton
-  /// steps each, and the next barrier parameter starts with decrements of ~1e7 whatever the polish.
-  double centring_tolerance = 0.125;
+  /// p = 2 (p = inf keeps 1/8): earlier centrings stop after the step from a point where lambda^2/2 is below this
+  /// (lambda <= 2): polishing them
+  /// to newton_tolerance cost 2-4 Newton steps each, and the next barrier parameter starts with decrements of ~1e7
+  /// whatever the polish. The last centring's early stop (newton_tolerance) also reads it, but its gap bound needs
+  /// lambda < 1 anyway. It was 1/8 (lambda <= 1/2, the textbook long-step proximity); near there full Newton steps
+  /// still only halved lambda^2 each. Side by side (profile_flatten, 10 outer iterations; final energies equal to
+  /// 6 digits), Newton steps for camel-cow / man-homer / fandisk-bunny: 1/8: 287 / 334 / 170, 1/2: 275 / 321 / 163,
+  /// 2: 264 / 310 / 157, 4: 262 / 310 / 159, 20: 261 / 314 / 165.
+  double centring_tolerance = 2;
   /// A centring ends, centred, when lambda^2/2 is below this and the line search cannot take the full Newton
   /// step (which it would in exact arithmetic: the merit t f0 + barrier has reached the limit of double
   /// precision, seen at t ~ 1e8 on whole-mesh disks). With lambda < 1 the gap is still bounded, by
