@@ -267,7 +267,7 @@ void supernodal_solve(const cholmod_factor& factor, const SolvePlan& plan, doubl
   }
   const auto n_top = static_cast<ptrdiff_t>(plan.top_columns.size());
   std::array<std::vector<double>, 2> top;
-#pragma omp parallel for num_threads(2) schedule(static, 1)
+#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
   for (int g = 0; g < 2; ++g) {
     std::vector<double> w(wsize);
     auto& mine = top[static_cast<size_t>(g)];
@@ -284,7 +284,7 @@ void supernodal_solve(const cholmod_factor& factor, const SolvePlan& plan, doubl
   std::vector<double> w(wsize);
   for (const int s : plan.top) forward_supernode<K>(L, s, y, w.data(), L.rows_of(s) - L.columns(s), nullptr, nullptr);
   for (auto it = plan.top.rbegin(); it != plan.top.rend(); ++it) backward_supernode<K>(L, *it, y, w.data());
-#pragma omp parallel for num_threads(2) schedule(static, 1)
+#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
   for (int g = 0; g < 2; ++g) {
     std::vector<double> wg(wsize);
     const auto& group = plan.groups[static_cast<size_t>(g)];

@@ -3,8 +3,11 @@
 /// primal_dual_solver.cpp): each face's corner map, rotation and area, where its corners live in the unknowns,
 /// and the sparsity pattern of the Schur system in the vertex coordinates that both solvers factorise.
 
+#include <omp.h>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -87,12 +90,13 @@ struct FacePartition {
 };
 FacePartition partition_faces(const Setup& s, const SparseCholesky& cholesky);
 
-/// Runs fn(j, list) for every face j: the faces of lists[0] and lists[1] on two threads, one list each, then those
-/// of lists[2] on this one. fn may add into the entries of its face's unknowns.
+/// Runs fn(j, list) for every face j: the faces of lists[0] and lists[1] on two threads, one list each (one after
+/// the other if OpenMP allows only one thread), then those of lists[2] on this one. fn may add into the entries of its
+/// face's unknowns.
 template <class Fn>
 void for_each_face_partitioned(const FacePartition& p, Fn&& fn) {
   if (!p.lists[0].empty() || !p.lists[1].empty()) {
-#pragma omp parallel for num_threads(2) schedule(static, 1)
+#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
     for (int h = 0; h < 2; ++h) {
       for (const int j : p.lists[static_cast<size_t>(h)]) fn(j, h);
     }

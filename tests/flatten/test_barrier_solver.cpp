@@ -123,6 +123,14 @@ TEST(flatten_sparse_cholesky, SolvesLikeAnIndependentFactorisation) {
         const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
         EXPECT_LT((full * x - b).norm(), 1e-9 * b.norm()) << "side " << side << ", " << k << " columns";
       }
+      // The split solve on one thread (liftmap --threads 1): the two halves one after the other, same result.
+      const Eigen::MatrixXd b = Eigen::MatrixXd::Random(A.rows(), 3);
+      const Eigen::MatrixXd x2 = chol.solve(b);
+      const int threads = omp_get_max_threads();
+      omp_set_num_threads(1);
+      const Eigen::MatrixXd x1 = chol.solve(b);
+      omp_set_num_threads(threads);
+      EXPECT_LT((x1 - x2).norm(), 1e-12 * x2.norm()) << "side " << side;
     }
     // Not positive definite: one diagonal entry made negative. The factorisation says so and solve refuses.
     Eigen::SparseMatrix<double> bad = A;
