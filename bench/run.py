@@ -680,7 +680,7 @@ class Bench:
             self.scaling_slopes[key] = (slope, len(pts))
             verdict = "-" if key.startswith("mem") else (
                 "not enough sizes" if slope is None else
-                ("met" if slope <= TARGETS["slope"] else f"missed by {slope - TARGETS['slope']:.2f}"))
+                ("met" if slope <= TARGETS["slope"] else f"missed by {slope - TARGETS['slope']:.3f}"))
             self.md.append(f"| {labels[key]} | {len(pts)} | {fmt(slope) if slope is not None else '-'} | "
                            f"{verdict} |")
         self.md.append("")
@@ -901,9 +901,9 @@ class Bench:
         for key, label in (("total", "cut + Tutte + lift + verify"), ("it1", "one outer iteration")):
             slope, n = slopes.get(key, (None, 0))
             t.append((f"time growing no faster than faces^1.3 ({label})",
-                      f"slope {slope:.2f} over {n} sizes" if slope is not None else "not measured",
+                      f"slope {slope:.3f} over {n} sizes" if slope is not None else "not measured",
                       "-" if slope is None else
-                      ("met" if slope <= TARGETS["slope"] else f"missed by {slope - TARGETS['slope']:.2f}")))
+                      ("met" if slope <= TARGETS["slope"] else f"missed by {slope - TARGETS['slope']:.3f}")))
         return ["## Targets", "", "| target | measured | verdict |", "|---|---|---|"] + \
             [f"| {a} | {b} | {c} |" for a, b, c in t] + [""]
 
