@@ -80,7 +80,7 @@ struct SolvePlan {
   std::vector<int> own_rows;               ///< per supernode of a group: its off-diagonal rows outside the top
   std::vector<int> top_slot;               ///< per column: its index among the top's columns, or -1
   std::vector<int> top_columns;            ///< the top's columns, by slot
-  std::vector<signed char> column_half;    ///< per column: its group (0, 1) or -1 (top)
+  std::vector<int> column_half;            ///< per column: its group (0, 1) or -1 (top)
   std::array<double, 3> fractions{};       ///< stored values of the factor in group 0, group 1 and the top
 };
 
@@ -373,7 +373,7 @@ SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
     if (group[us] >= 0) {
       plan.groups[static_cast<size_t>(group[us])].push_back(s);
       std::fill(&plan.column_half[static_cast<size_t>(L.super[s])],
-                &plan.column_half[static_cast<size_t>(L.super[s + 1] - 1)] + 1, static_cast<signed char>(group[us]));
+                &plan.column_half[static_cast<size_t>(L.super[s + 1] - 1)] + 1, group[us]);
       continue;
     }
     if (!is_top[us]) return {};  // neither in a group nor above them: cannot happen in a tree, but no split then
@@ -535,10 +535,10 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
 
 bool SparseCholesky::analyzed() const { return impl_->analyzed; }
 
-std::vector<signed char> SparseCholesky::unknown_halves() const {
+std::vector<int> SparseCholesky::unknown_halves() const {
   const Impl& m = *impl_;
   if (!m.plan.split) return {};
-  std::vector<signed char> halves(static_cast<size_t>(m.n));
+  std::vector<int> halves(static_cast<size_t>(m.n));
   for (size_t k = 0; k < halves.size(); ++k) halves[static_cast<size_t>(m.perm[k])] = m.plan.column_half[k];
   return halves;
 }

@@ -46,7 +46,7 @@ class SparseCholesky {
   /// unknowns of different halves are never coupled in A, so sums into A's entries or into vectors over the
   /// unknowns can run on two threads, one per half, with the entries that touch the top added afterwards. Empty
   /// if the solve is not split.
-  [[nodiscard]] std::vector<signed char> unknown_halves() const;
+  [[nodiscard]] std::vector<int> unknown_halves() const;
 
  private:
   struct Impl;

@@ -95,7 +95,7 @@ Pattern make_pattern(const Setup& s) {
 
 FacePartition partition_faces(const Setup& s, const SparseCholesky& cholesky) {
   FacePartition p;
-  const std::vector<signed char> halves = cholesky.unknown_halves();
+  const std::vector<int> halves = cholesky.unknown_halves();
   for (int j = 0; j < s.n_faces; ++j) {
     int list = 2;
     if (!halves.empty()) {

@@ -168,7 +168,7 @@ TEST(flatten_sparse_cholesky, FacePartitionFollowsTheHalves) {
   const subproblem::Pattern pattern = subproblem::make_pattern(s);
   SparseCholesky chol;
   chol.analyze(pattern.A);
-  const std::vector<signed char> halves = chol.unknown_halves();
+  const std::vector<int> halves = chol.unknown_halves();
   ASSERT_EQ(halves.size(), static_cast<size_t>(s.n_var));
   const subproblem::FacePartition parts = subproblem::partition_faces(s, chol);
   std::vector<int> seen(static_cast<size_t>(s.n_faces), 0);
