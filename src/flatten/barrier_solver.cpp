@@ -649,18 +649,13 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
         }
         Haa = 0.5 * (Haa + Haa.transpose());
         if (isotropic && !fs.ghost()) {
-          // Raise the smaller curvature of the (gamma, delta) block to the larger one, along its eigenvector: the
-          // block stays positive semidefinite and only grows, so the step is still a descent direction.
+          // Raise the smaller curvature of the (gamma, delta) block to the larger one, which makes the block its
+          // largest eigenvalue times the identity: it only grows (stays positive semidefinite), so the step is
+          // still a descent direction.
           const Eigen::Matrix2d G = Haa.block<2, 2>(2, 2);
           const double half = 0.5 * G.trace();
-          const double disc = std::sqrt(std::max(0.0, half * half - G.determinant()));
-          const double lmax = half + disc, lmin = half - disc;
-          if (lmax > 0 && lmin < lmax) {
-            Eigen::Vector2d v(G(0, 1), lmin - G(0, 0));
-            if (!(v.norm() > 1e-300 * lmax)) v = G(0, 0) <= G(1, 1) ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1);
-            v.normalize();
-            Haa.block<2, 2>(2, 2) += (lmax - lmin) * v * v.transpose();
-          }
+          const double lmax = half + std::sqrt(std::max(0.0, half * half - G.determinant()));
+          if (lmax > 0) Haa.block<2, 2>(2, 2) = lmax * Eigen::Matrix2d::Identity();
         }
         // The exact Schur complement is positive semidefinite; rounding in the elimination of nearly active
         // constraints (huge, nearly cancelling terms) can leave negative eigenvalues: clamp them. Most blocks are
