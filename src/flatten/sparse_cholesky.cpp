@@ -80,7 +80,6 @@ struct SolvePlan {
   std::vector<int> own_rows;               ///< per supernode of a group: its off-diagonal rows outside the top
   std::vector<int> top_slot;               ///< per column: its index among the top's columns, or -1
   std::vector<int> top_columns;            ///< the top's columns, by slot
-  std::vector<int> column_half;            ///< per column: its group (0, 1) or -1 (top)
   std::array<double, 3> fractions{};       ///< stored values of the factor in group 0, group 1 and the top
 };
 
@@ -367,13 +366,10 @@ SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
     }
   }
   plan.top_slot.assign(static_cast<size_t>(n), -1);
-  plan.column_half.assign(static_cast<size_t>(n), -1);
   for (int s = 0; s < ns; ++s) {
     const auto us = static_cast<size_t>(s);
     if (group[us] >= 0) {
       plan.groups[static_cast<size_t>(group[us])].push_back(s);
-      std::fill(&plan.column_half[static_cast<size_t>(L.super[s])],
-                &plan.column_half[static_cast<size_t>(L.super[s + 1] - 1)] + 1, group[us]);
       continue;
     }
     if (!is_top[us]) return {};  // neither in a group nor above them: cannot happen in a tree, but no split then
@@ -538,8 +534,13 @@ bool SparseCholesky::analyzed() const { return impl_->analyzed; }
 std::vector<int> SparseCholesky::unknown_halves() const {
   const Impl& m = *impl_;
   if (!m.plan.split) return {};
-  std::vector<int> halves(static_cast<size_t>(m.n));
-  for (size_t k = 0; k < halves.size(); ++k) halves[static_cast<size_t>(m.perm[k])] = m.plan.column_half[k];
+  const Supernodes L(*m.L);
+  std::vector<int> halves(static_cast<size_t>(m.n), -1);  // the top's unknowns stay -1
+  for (int h = 0; h < 2; ++h) {
+    for (const int s : m.plan.groups[static_cast<size_t>(h)]) {
+      for (int k = L.super[s]; k < L.super[s + 1]; ++k) halves[static_cast<size_t>(m.perm[static_cast<size_t>(k)])] = h;
+    }
+  }
   return halves;
 }
 
