@@ -113,6 +113,10 @@ CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   trace.shorten = options.geodesic_paths;
   TracedPaths traced = trace_cut_paths(ra, mesh_a, la, rb, mesh_b, lb, result.tree, trace);
   equalize_paths(ra, mesh_a, traced.paths_a, rb, mesh_b, traced.paths_b, options.snap);
+  if (options.delaunay_flips) {
+    improve_refined_triangles(ra, traced.paths_a);
+    improve_refined_triangles(rb, traced.paths_b);
+  }
 
   CutDisk disk_a, disk_b;
   result.a = finish(ra, mesh_a, la, std::move(traced.paths_a), disk_a);

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <set>
 
 #include "cut_test_util.h"
 
@@ -58,6 +60,111 @@ TEST(cut_refined_mesh, RandomSplitsKeepTheSurface) {
     const Eigen::Vector3d a = r.positions[static_cast<size_t>(f[0])], b = r.positions[static_cast<size_t>(f[1])],
                           c = r.positions[static_cast<size_t>(f[2])];
     EXPECT_GT((b - a).cross(c - a).norm(), 0.0);
+  }
+}
+
+/// The largest angle of refined face f, in degrees.
+double largest_angle(const RefinedMesh& r, const std::array<int, 3>& f) {
+  double largest = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d p = r.positions[static_cast<size_t>(f[static_cast<size_t>(k)])];
+    const Eigen::Vector3d u = r.positions[static_cast<size_t>(f[static_cast<size_t>((k + 1) % 3)])] - p;
+    const Eigen::Vector3d v = r.positions[static_cast<size_t>(f[static_cast<size_t>((k + 2) % 3)])] - p;
+    largest = std::max(largest, std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / M_PI);
+  }
+  return largest;
+}
+
+// Splits near the corners of input faces, joined by chords (as cut paths near vertices make them), leave caps; the
+// Delaunay flips inside each input face remove them and keep the surface: the same vertices, every face inside its
+// input face, the same area, every chord still an edge, and no edge left that the Delaunay criterion would flip.
+TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
+  const auto in = test::load("hand");
+  const Mesh input(in.F, static_cast<int>(in.V.rows()));
+  RefinedMesh r = make_refined_mesh(input, in.V);
+  std::mt19937 rng(11);
+  std::vector<std::vector<int>> paths;
+  for (int round = 0; round < 3; ++round) {
+    std::vector<EdgeSplit> splits;
+    std::vector<std::array<int, 2>> chords;
+    std::vector<char> face_used(static_cast<size_t>(r.mesh.n_faces()), 0);
+    const int n_old = r.n_vertices();
+    for (int i = 0; i < 300; ++i) {
+      const FaceId f(static_cast<int>(rng() % static_cast<unsigned>(r.mesh.n_faces())));
+      const auto fh = r.mesh.face_halfedges(f);
+      bool busy = face_used[static_cast<size_t>(f.idx)] != 0;
+      for (const HalfedgeId h : fh) busy = busy || face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)];
+      if (busy) continue;
+      face_used[static_cast<size_t>(f.idx)] = 1;
+      for (const HalfedgeId h : fh) face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)] = 1;
+      // A chord cutting off corner 1 of the face close to it, and a point near the end of the third edge.
+      const double near = std::uniform_real_distribution<double>(0.01, 0.05)(rng);
+      const int id0 = n_old + static_cast<int>(splits.size());
+      splits.push_back({r.mesh.tail(fh[0]).idx, r.mesh.head(fh[0]).idx, 1 - near});
+      splits.push_back({r.mesh.tail(fh[1]).idx, r.mesh.head(fh[1]).idx, near});
+      splits.push_back({r.mesh.tail(fh[2]).idx, r.mesh.head(fh[2]).idx, 0.5 + near});
+      chords.push_back({id0, id0 + 1});
+    }
+    split_refined_mesh(r, input, splits, chords);
+    for (const auto& c : chords) paths.push_back({c[0], c[1]});
+  }
+  // Chords that later rounds split are no edges any more: the others are the constrained edges.
+  std::erase_if(paths, [&](const std::vector<int>& p) { return !find_halfedge(r.mesh, VertexId(p[0]), VertexId(p[1])).valid(); });
+  ASSERT_GT(paths.size(), 300u);
+  const RefinedMesh before = r;
+  auto caps = [](const RefinedMesh& m) {
+    int n = 0;
+    for (const auto& f : m.faces) n += largest_angle(m, f) > 170 ? 1 : 0;
+    return n;
+  };
+  const int flips = improve_refined_triangles(r, paths);
+  EXPECT_GT(flips, 0);
+  ASSERT_GT(caps(before), 50);
+  // Not all: a cap whose long edge is a chord or an input edge cannot be flipped, nor one that faces a needle.
+  EXPECT_LT(3 * caps(r), 2 * caps(before)) << "caps before " << caps(before) << ", after " << caps(r);
+
+  ASSERT_EQ(r.n_vertices(), before.n_vertices());
+  ASSERT_EQ(r.faces.size(), before.faces.size());
+  EXPECT_EQ(r.mesh.euler_characteristic(), 2);
+  EXPECT_TRUE(r.mesh.boundary_loops().empty());
+  EXPECT_NEAR(test::area(r.vertex_matrix(), r.face_matrix()), test::area(in.V, in.F), 1e-9 * test::area(in.V, in.F));
+  for (const auto& p : paths) EXPECT_TRUE(find_halfedge(r.mesh, VertexId(p[0]), VertexId(p[1])).valid());
+  for (size_t f = 0; f < r.faces.size(); ++f) {
+    const auto fv = input.face_vertices(FaceId(r.input_face[f]));
+    const Eigen::Vector3d a = in.V.row(fv[0].idx), b = in.V.row(fv[1].idx), c = in.V.row(fv[2].idx);
+    const Eigen::Vector3d nrm = (b - a).cross(c - a);
+    const Eigen::Vector3d p0 = r.positions[static_cast<size_t>(r.faces[f][0])];
+    const Eigen::Vector3d p1 = r.positions[static_cast<size_t>(r.faces[f][1])];
+    const Eigen::Vector3d p2 = r.positions[static_cast<size_t>(r.faces[f][2])];
+    EXPECT_GT((p1 - p0).cross(p2 - p0).dot(nrm), 0.0) << "face " << f << " flipped or degenerate";
+    for (const Eigen::Vector3d& p : {p0, p1, p2}) {
+      const double tol = 1e-9 * nrm.squaredNorm();
+      EXPECT_GE((b - p).cross(c - p).dot(nrm), -tol) << "face " << f << " leaves its input face";
+      EXPECT_GE((c - p).cross(a - p).dot(nrm), -tol) << "face " << f << " leaves its input face";
+      EXPECT_GE((a - p).cross(b - p).dot(nrm), -tol) << "face " << f << " leaves its input face";
+    }
+  }
+  // Locally Delaunay: every edge inside one input face that is not a chord, where the flip would be convex, has
+  // opposite angles summing to at most pi.
+  std::set<std::pair<int, int>> fixed;
+  for (const auto& p : paths) fixed.insert({std::min(p[0], p[1]), std::max(p[0], p[1])});
+  for (int e = 0; e < r.mesh.n_edges(); ++e) {
+    const HalfedgeId h = Mesh::halfedge(EdgeId(e)), t = Mesh::twin(h);
+    const int u = r.mesh.tail(h).idx, w = r.mesh.head(h).idx;
+    if (fixed.count({std::min(u, w), std::max(u, w)})) continue;
+    const int f1 = r.mesh.face(h).idx, f2 = r.mesh.face(t).idx;
+    if (r.input_face[static_cast<size_t>(f1)] != r.input_face[static_cast<size_t>(f2)]) continue;
+    const int x = r.mesh.head(r.mesh.next(h)).idx, y = r.mesh.head(r.mesh.next(t)).idx;
+    const auto angle = [&](int at, int a, int b) {
+      const Eigen::Vector3d p = r.positions[static_cast<size_t>(at)];
+      const Eigen::Vector3d da = r.positions[static_cast<size_t>(a)] - p, db = r.positions[static_cast<size_t>(b)] - p;
+      return std::atan2(da.cross(db).norm(), da.dot(db));
+    };
+    const Eigen::Vector3d pu = r.positions[static_cast<size_t>(u)], pw = r.positions[static_cast<size_t>(w)];
+    const Eigen::Vector3d px = r.positions[static_cast<size_t>(x)], py = r.positions[static_cast<size_t>(y)];
+    const Eigen::Vector3d normal = (pw - pu).cross(px - pu);
+    const bool convex = (py - pu).cross(px - pu).dot(normal) > 0 && (pw - py).cross(px - py).dot(normal) > 0;
+    if (convex) EXPECT_LE(angle(x, u, w) + angle(y, w, u), M_PI * (1 + 1e-6)) << "edge " << u << "-" << w;
   }
 }
 
