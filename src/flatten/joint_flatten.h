@@ -50,12 +50,16 @@ struct JointFlattenOptions {
   /// Each subproblem is solved to optimality within a certified relative gap that follows the outer loop's
   /// progress: gap_fraction times the relative decrease of the energy (8) in the previous outer iteration, clamped
   /// to [solver.relative_gap, max_subproblem_gap]; the first subproblem (from the Tutte start, which it improves
-  /// by orders of magnitude) to max_subproblem_gap. A gap of a tenth of what the outer loop is about to gain cannot
-  /// change its course, and near convergence (gains near relative_tolerance) it is a tenth of the stopping
-  /// threshold. Camel-cow, first 4 outer iterations: gaps of 1e-3 instead of 1e-5 took 64 / 37 / 38 / 31 Newton
-  /// steps instead of 74 / 53 / 52 / 45, with true energies (8) within 5e-5 relative (lower in iterations 2-4). 0:
-  /// every subproblem to solver.relative_gap.
-  double gap_fraction = 0.1;
+  /// by orders of magnitude) to max_subproblem_gap. A gap of a fraction of what the outer loop is about to gain
+  /// cannot change its course, and near convergence (gains near relative_tolerance) it is that fraction of the
+  /// stopping threshold. Camel-cow, first 4 outer iterations: gaps of 1e-3 instead of 1e-5 took 64 / 37 / 38 / 31
+  /// Newton steps instead of 74 / 53 / 52 / 45, with true energies (8) within 5e-5 relative (lower in iterations
+  /// 2-4). A third instead of a tenth (since the Delaunay flips of the cut; profile_flatten, 10 outer iterations at
+  /// most, Newton steps after the first subproblem): camel-cow 211 -> 185, man-homer 163 -> 123, fandisk-bunny 79
+  /// -> 89 (one more outer iteration, energy 6.5485 -> 6.5457), sphere-ellipsoid 82 -> 69; final energies within
+  /// 1.1e-5 relative otherwise (camel-cow 8.236900 -> 8.236990, man-homer 6.980516 -> 6.980520). Half: man-homer
+  /// 125, energies within 2e-5. 0: every subproblem to solver.relative_gap.
+  double gap_fraction = 0.3;
   /// The coarsest gap of gap_fraction's rule, and the first subproblem's. It was the outer tolerance (1e-3), which
   /// for the first 4-5 outer iterations (relative gains of 1-10%) asked for gaps 10-100 times finer than a tenth
   /// of the gain, one more centring each. 1e-2 against 1e-3, side by side (profile_flatten, 10 outer iterations):

@@ -97,16 +97,16 @@ TEST(flatten_joint, AutoSolverIsBarrierForTwoNormAndPrimalDualForInfinityNorm) {
 }
 
 TEST(flatten_joint, SubproblemGapFollowsTheOuterProgress) {
-  JointFlattenOptions opt;  // coarsest gap 1e-2, finest gap 1e-5, gap_fraction 0.1
+  JointFlattenOptions opt;  // coarsest gap 1e-2, finest gap 1e-5, gap_fraction 0.3
   std::vector<JointFlattenIteration> its(1);
   its[0].energy = 1000;
   EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-2);  // first subproblem: the coarsest gap
   its.emplace_back().energy = 10;                    // a 99x gain: clamped to the coarsest gap
   EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-2);
-  its.emplace_back().energy = 10 / (1 + 0.05);  // relative gain 5e-2: a tenth of it
-  EXPECT_NEAR(subproblem_gap(opt, its), 5e-3, 1e-15);
-  its.emplace_back().energy = its.back().energy / (1 + 4e-3);  // relative gain 4e-3: a tenth of it
-  EXPECT_NEAR(subproblem_gap(opt, its), 4e-4, 1e-15);
+  its.emplace_back().energy = 10 / (1 + 0.02);  // relative gain 2e-2: a third of it
+  EXPECT_NEAR(subproblem_gap(opt, its), 6e-3, 1e-15);
+  its.emplace_back().energy = its.back().energy / (1 + 4e-3);  // relative gain 4e-3: a third of it
+  EXPECT_NEAR(subproblem_gap(opt, its), 1.2e-3, 1e-15);
   its.emplace_back().energy = its.back().energy * (1 - 1e-6);  // tiny gain: never finer than solver.relative_gap
   EXPECT_DOUBLE_EQ(subproblem_gap(opt, its), 1e-5);
   opt.gap_fraction = 0;  // off: always the solver's own gap
