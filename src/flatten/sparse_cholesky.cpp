@@ -41,6 +41,19 @@ extern "C" void GOMP_parallel(  // NOLINT(readability-identifier-naming)
   real(fn, data, num_threads, flags);
 }
 
+// SuiteSparse's clock, which CHOLMOD reads around every BLAS call of its supernodal factorisation for its own
+// statistics (Common->CHOLMOD_CPU_*_TIME; 48 call sites in Debian's libcholmod 3.0.14, which is built with them).
+// liftmap never reads those statistics: while SerialBlas is active on this thread (our factorisations) the clock
+// stands still, elsewhere it is SuiteSparse's own. Its clock_gettime calls were 2.7% of the main thread's samples
+// on man-homer (perf, 4 outer iterations). Defined here for the same reason as GOMP_parallel; the name is
+// SuiteSparse's ABI.
+extern "C" double SuiteSparse_time(void) {  // NOLINT(readability-identifier-naming)
+  using Fn = double (*)();
+  static const Fn real = reinterpret_cast<Fn>(dlsym(RTLD_NEXT, "SuiteSparse_time"));
+  if (liftmap::g_serial_regions || real == nullptr) return 0;
+  return real();
+}
+
 namespace liftmap {
 namespace {
 
