@@ -462,15 +462,17 @@ double subproblem_objective(const ConvexSubproblem& problem, const Eigen::Matrix
 }
 
 BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                      const BarrierOptions& options, SparseCholesky& cholesky) {
+                                      const BarrierOptions& options, SparseCholesky& cholesky,
+                                      subproblem::AssemblyStructure* cache) {
   if (X0.rows() != problem.n_slots || X0.cols() != 2 || problem.n_slots < 2) {
     throw InvalidInputError("convex subproblem: X0 must be #slots by 2");
   }
   Setup s = make_setup(problem);
   const Settings& st = s.settings;
-  Pattern pattern = make_pattern(s);
-  if (!cholesky.analyzed()) cholesky.analyze(pattern.A);
-  const FacePartition parts = partition_faces(s, cholesky);
+  AssemblyStructure own;
+  AssemblyStructure& assembly = assembly_structure(s, cholesky, cache != nullptr ? *cache : own);
+  Pattern& pattern = assembly.pattern;
+  const FacePartition& parts = assembly.parts;
 
   // Strictly feasible start for the auxiliaries: c between |(gamma,delta)| and alpha cos + beta sin.
   State z;
@@ -480,14 +482,16 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   z.e.resize(s.n_faces);
   z.T = {0, 0};
   set_ghost_bounds(z.pos, s);
+  int first_infeasible = s.n_faces;
+#pragma omp parallel for schedule(static) reduction(min : first_infeasible) if (s.n_faces > kParallelFaces)
   for (int j = 0; j < s.n_faces; ++j) {
     const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
     const Vec7 q = local_vars(s, z, j);
     const double cn = std::hypot(q(2), q(3));
     const double l = q(0) * fs.cs + q(1) * fs.sn;
     if (!(l - cn > 0)) {
-      throw InvalidInputError("convex subproblem: the start is not strictly feasible (sigma_tilde <= 0 on face " +
-                              std::to_string(j) + ")");
+      first_infeasible = std::min(first_infeasible, j);
+      continue;
     }
     z.c(j) = cn + 0.1 * (l - cn);
     if (fs.ghost()) {
@@ -497,7 +501,14 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
     const double m = l - z.c(j);
     const double n = std::hypot(q(0), q(1));
     z.e(j) = 1.5 * (st.h_max ? std::max(n + z.c(j), 1.0 / m) : std::hypot(n + z.c(j), 1.0 / m));
-    z.T[static_cast<size_t>(fs.mesh)] = std::max(z.T[static_cast<size_t>(fs.mesh)], z.e(j));
+  }
+  if (first_infeasible < s.n_faces) {
+    throw InvalidInputError("convex subproblem: the start is not strictly feasible (sigma_tilde <= 0 on face " +
+                            std::to_string(first_infeasible) + ")");
+  }
+  for (int j = 0; j < s.n_faces; ++j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    if (!fs.ghost()) z.T[static_cast<size_t>(fs.mesh)] = std::max(z.T[static_cast<size_t>(fs.mesh)], z.e(j));
   }
 
   const double nu = total_nu(s);
@@ -508,8 +519,8 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
   const double start_objective_2 = std::sqrt(S_start[0]) + std::sqrt(S_start[1]);  // (10a) at the start, p = 2
   double t = nu / (st.p_inf ? f0(z) : start_objective_2);
   {
-    double gf_gphi = 0, gf_gf = 0;
-    std::array<double, 2> barrier_t{0, 0};
+    double gf_gphi = 0, gf_gf = 0, barrier_t = 0;
+#pragma omp parallel for schedule(static) reduction(+ : gf_gphi, gf_gf, barrier_t) if (s.n_faces > kParallelFaces)
     for (int j = 0; j < s.n_faces; ++j) {
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
       if (fs.ghost()) continue;
@@ -517,7 +528,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       Mat7 H;
       barrier_derivatives(local_vars(s, z, j), fs.cs, fs.sn, false, 0.0, st, g, H);
       if (st.p_inf) {
-        barrier_t[static_cast<size_t>(fs.mesh)] += g(kT);
+        barrier_t += g(kT);
       } else {
         const double df = fs.w * z.e(j) / std::sqrt(S_start[static_cast<size_t>(fs.mesh)]);
         gf_gphi += df * g(kE);
@@ -525,7 +536,7 @@ BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eig
       }
     }
     if (st.p_inf) {
-      gf_gphi = barrier_t[0] + barrier_t[1];
+      gf_gphi = barrier_t;
       gf_gf = 2;
     }
     if (gf_gphi < 0) t = -gf_gphi / gf_gf;

@@ -12,6 +12,10 @@
 
 namespace liftmap {
 
+namespace subproblem {
+struct AssemblyStructure;
+}
+
 /// One flattening of the pair in problem (10): its faces, Jacobian operator, fixed rotations R_j of eq. (7b),
 /// and where each vertex's position lives in the shared unknowns.
 struct SubproblemMesh {
@@ -137,10 +141,12 @@ double subproblem_objective(const ConvexSubproblem& problem, const Eigen::Matrix
 /// feasible set: every iterate has sigma_tilde_j > 0, hence det A_j > 0, for all faces.
 /// \param X0 #slots by 2 strictly feasible start
 /// \param cholesky reused factorisation: analysed on first use, then only refactorised (same problem pattern)
+/// \param cache if given, the Newton system's assembly structure, kept for the next subproblem of the same faces
 /// \throw InvalidInputError if X0 is not strictly feasible; PipelineError if a Newton step is not finite.
 /// If the Newton systems stop factorising (double-precision limit, seen for p = inf near a 1e-8 gap), the
 /// method stops at its strictly feasible iterate with converged = false and the reached gap_bound.
 BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                      const BarrierOptions& options, SparseCholesky& cholesky);
+                                      const BarrierOptions& options, SparseCholesky& cholesky,
+                                      subproblem::AssemblyStructure* cache = nullptr);
 
 }  // namespace liftmap

@@ -13,6 +13,7 @@
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
 #include "flatten/primal_dual_solver.h"
+#include "flatten/subproblem_faces.h"
 #include "flatten/tutte.h"
 
 namespace liftmap {
@@ -277,6 +278,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     if (options.on_iteration) options.on_iteration(0, it);
   }
   SparseCholesky cholesky;
+  subproblem::AssemblyStructure assembly;  // shared by every subproblem: only rotations and ghost bounds change
   const bool primal_dual = uses_primal_dual(options);
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -287,8 +289,8 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     solver.initial_gap = start_gap(options, res.iterations);
     BarrierResult br;
     try {
-      br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, solver, cholesky)
-                       : solve_convex_subproblem(sp, X, solver, cholesky);
+      br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, solver, cholesky, &assembly)
+                       : solve_convex_subproblem(sp, X, solver, cholesky, &assembly);
     } catch (const PipelineError& e) {
       // Name the iteration and the distortion it started from: the solver's own message cannot.
       const double start_max = res.iterations.back().max_distortion;

@@ -254,7 +254,8 @@ struct FaceSystem {
 }  // namespace
 
 BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                                  const BarrierOptions& options, SparseCholesky& cholesky) {
+                                                  const BarrierOptions& options, SparseCholesky& cholesky,
+                                                  subproblem::AssemblyStructure* cache) {
   if (X0.rows() != problem.n_slots || X0.cols() != 2 || problem.n_slots < 2) {
     throw InvalidInputError("convex subproblem: X0 must be #slots by 2");
   }
@@ -266,9 +267,10 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
   it.pos.resize(s.n_pos);
   for (int i = 0; i < problem.n_slots; ++i) it.pos.segment<2>(2 * i) = X0.row(i).transpose();
   set_ghost_bounds(it.pos, s);
-  Pattern pattern = make_pattern(s);
-  if (!cholesky.analyzed()) cholesky.analyze(pattern.A);
-  const FacePartition parts = partition_faces(s, cholesky);
+  AssemblyStructure own;
+  AssemblyStructure& assembly = assembly_structure(s, cholesky, cache != nullptr ? *cache : own);
+  Pattern& pattern = assembly.pattern;
+  const FacePartition& parts = assembly.parts;
 
   // Strictly feasible start: every cone's slack well inside (each auxiliary 1.5 times its lower bound).
   it.y.setZero(kAux, nf);

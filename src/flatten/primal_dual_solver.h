@@ -30,7 +30,9 @@ namespace liftmap {
 /// residual, step = the step length. BarrierResult::newton_steps counts iterations, gap_bound is s^T z at the end
 /// (a bound of objective minus optimum once the dual residual is 0).
 /// \throw InvalidInputError if X0 is not strictly feasible; PipelineError if a step is not finite.
+/// `cache` as for solve_convex_subproblem.
 BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                                  const BarrierOptions& options, SparseCholesky& cholesky);
+                                                  const BarrierOptions& options, SparseCholesky& cholesky,
+                                                  subproblem::AssemblyStructure* cache = nullptr);
 
 }  // namespace liftmap

@@ -116,6 +116,18 @@ FacePartition partition_faces(const Setup& s, const SparseCholesky& cholesky) {
   return p;
 }
 
+AssemblyStructure& assembly_structure(const Setup& s, SparseCholesky& cholesky, AssemblyStructure& cache) {
+  bool same = cache.var.size() == s.faces.size() && cholesky.analyzed();
+  for (size_t j = 0; same && j < s.faces.size(); ++j) same = cache.var[j] == s.faces[j].var;
+  if (same) return cache;
+  cache.pattern = make_pattern(s);
+  if (!cholesky.analyzed()) cholesky.analyze(cache.pattern.A);
+  cache.parts = partition_faces(s, cholesky);
+  cache.var.resize(s.faces.size());
+  for (size_t j = 0; j < s.faces.size(); ++j) cache.var[j] = s.faces[j].var;
+  return cache;
+}
+
 bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift) {
   if (last_shift == 0 && cholesky.factorize(A)) return true;
   const Eigen::VectorXd diag = A.diagonal();

@@ -13,6 +13,7 @@
 #include "disk_patches.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
+#include "flatten/subproblem_faces.h"
 
 namespace liftmap {
 namespace {
@@ -300,6 +301,37 @@ TEST(flatten_joint, GhostVerticesArePlacedAfreshForEachSubproblem) {
   const BarrierResult second = solve_convex_subproblem(sp, X, solver, cholesky);
   EXPECT_TRUE(second.converged);
   EXPECT_LE(second.objective, before);
+}
+
+TEST(flatten_joint, AssemblyStructureIsSharedOnlyBySubproblemsOfTheSameFaces) {
+  // joint_flatten keeps the Newton system's pattern and face partition for all its subproblems. The next subproblem
+  // of the same pair (new rotations and ghosts) reuses them and solves exactly as with its own; the subproblem of
+  // another pair rebuilds them.
+  SparseCholesky cholesky;
+  SecondSubproblem p = second_subproblem(1500, 500, cholesky);
+  BarrierOptions o;
+  o.relative_gap = 1e-4;
+  subproblem::AssemblyStructure cache;
+  const BarrierResult first = solve_convex_subproblem(p.jp.subproblem, p.X, o, cholesky, &cache);
+  ASSERT_TRUE(first.converged);
+  ASSERT_FALSE(cache.var.empty());
+  const auto* index = cache.pattern.index.data();
+  Eigen::MatrixXd X = first.X;
+  place_ghost_vertices(p.jp.subproblem, X);
+  set_rotations(p.jp.subproblem, X);
+  const BarrierResult shared = solve_convex_subproblem(p.jp.subproblem, X, o, cholesky, &cache);
+  EXPECT_EQ(cache.pattern.index.data(), index) << "rebuilt for the same faces";
+  const BarrierResult own = solve_convex_subproblem(p.jp.subproblem, X, o, cholesky);
+  EXPECT_EQ(shared.X, own.X);
+  EXPECT_EQ(shared.newton_steps, own.newton_steps);
+
+  SparseCholesky other_cholesky;
+  SecondSubproblem q = second_subproblem(900, 400, other_cholesky);
+  const BarrierResult other = solve_convex_subproblem(q.jp.subproblem, q.X, o, other_cholesky, &cache);
+  EXPECT_NE(cache.pattern.index.data(), index) << "kept for other faces";
+  EXPECT_EQ(cache.var.size(), static_cast<size_t>(q.jp.subproblem.meshes[0].F.rows() + q.jp.subproblem.meshes[1].F.rows() +
+                                                   q.jp.subproblem.ghosts.F.rows()));
+  EXPECT_EQ(other.X, solve_convex_subproblem(q.jp.subproblem, q.X, o, other_cholesky).X);
 }
 
 TEST(flatten_joint, RejectsMismatchedBoundaries) {
