@@ -73,7 +73,14 @@ struct JointFlattenOptions {
   /// previous minimiser, is within about that decrease of the new optimum; the usual first centring led back to a
   /// point ~3% above it (camel-cow, f0 8.40 against 8.11) and the next two centrings forward again. Camel-cow,
   /// 10 outer iterations: 379 -> 350 Newton steps; man-homer 505 -> 432; the same energies to 1e-6. 0: off.
-  double start_gap_fraction = 1;
+  /// Half of gap_fraction: the barrier parameter at which the barrier method's last centring meets the gap (it aims at
+  /// half the requested gap), so that each subproblem after the first is a single centring from the previous
+  /// minimiser. It was 1 (two centrings, the second at ~10 times the first's parameter). Since the Delaunay flips of
+  /// the cut, 1 -> 0.15, Newton steps after the first subproblem (profile_flatten, 10 outer iterations at most):
+  /// man-homer 123 -> 101 (per outer iteration, median 21 -> 16), fandisk-bunny 89 -> 58, sphere-ellipsoid 69 ->
+  /// 52, camel-cow 182 -> 192 (median 20 -> 21); final energies within 9e-6 relative. 0.3 and 0.1 gave man-homer
+  /// medians of 16 and 18, camel-cow 21 and 22.
+  double start_gap_fraction = 0.15;
   SubproblemSolver method = SubproblemSolver::kAuto;
   /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
   /// they happen (progress reporting); empty: not called.

@@ -117,14 +117,15 @@ TEST(flatten_joint, SubproblemGapFollowsTheOuterProgress) {
 }
 
 TEST(flatten_joint, StartGapFollowsTheOuterProgress) {
-  JointFlattenOptions opt;  // start_gap_fraction 1
+  JointFlattenOptions opt;  // start_gap_fraction 0.15, half of gap_fraction
+  EXPECT_DOUBLE_EQ(opt.start_gap_fraction, 0.5 * opt.gap_fraction);
   std::vector<JointFlattenIteration> its(1);
   its[0].energy = 1000;
   EXPECT_EQ(start_gap(opt, its), 0);  // first subproblem: the usual barrier parameter
   its.emplace_back().energy = 10;
-  EXPECT_NEAR(start_gap(opt, its), 99, 1e-12);  // the relative gain (the barrier method keeps the larger t anyway)
+  EXPECT_NEAR(start_gap(opt, its), 0.15 * 99, 1e-12);  // (the barrier method keeps the larger t anyway)
   its.emplace_back().energy = 10 / (1 + 4e-3);
-  EXPECT_NEAR(start_gap(opt, its), 4e-3, 1e-15);
+  EXPECT_NEAR(start_gap(opt, its), 0.15 * 4e-3, 1e-15);
   opt.start_gap_fraction = 0.5;
   EXPECT_NEAR(start_gap(opt, its), 2e-3, 1e-15);
   its.emplace_back().energy = its.back().energy;  // no gain: no guess either
