@@ -4,9 +4,10 @@
 
 #include <algorithm>
 #include <cassert>
-#include <iterator>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+#include <numbers>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -342,10 +343,6 @@ std::vector<int> insert_polyline(RefinedMesh& refined, const Mesh& input, const 
   return ids;
 }
 
-}  // namespace liftmap
-
-namespace liftmap {
-
 namespace {
 
 std::uint64_t directed_key(int u, int w) {
@@ -402,7 +399,7 @@ int improve_refined_triangles(RefinedMesh& refined, const std::vector<std::vecto
                           &px = pos[static_cast<size_t>(x)], &py = pos[static_cast<size_t>(y)];
     // Delaunay: flip if the angles opposite (u, w) sum to more than pi (with a margin against cycling on
     // cocircular points).
-    if (corner_angle(px, pu, pw) + corner_angle(py, pw, pu) <= M_PI * (1 + 1e-9)) continue;
+    if (corner_angle(px, pu, pw) + corner_angle(py, pw, pu) <= std::numbers::pi * (1 + 1e-9)) continue;
     // The quad must be strictly convex: both new triangles oriented like the old ones.
     const Eigen::Vector3d normal = (pw - pu).cross(px - pu) + (pu - pw).cross(py - pw);
     const Eigen::Vector3d n1 = (py - pu).cross(px - pu), n2 = (pw - py).cross(px - py);

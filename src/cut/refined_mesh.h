@@ -62,10 +62,6 @@ std::vector<int> insert_polyline(RefinedMesh& refined, const Mesh& input, const 
 /// The halfedge from `a` to `b` of `mesh`, invalid if there is no such edge.
 HalfedgeId find_halfedge(const Mesh& mesh, VertexId a, VertexId b);
 
-}  // namespace liftmap
-
-namespace liftmap {
-
 /// Flips edges of the refined mesh towards the Delaunay triangulation of each input face, keeping every edge of
 /// `paths` (vertex sequences) and every edge whose two faces lie in different input faces: only flips inside one
 /// (planar) input face, so the refined surface, its vertices and each face's input face are unchanged. The

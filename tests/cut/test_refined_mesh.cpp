@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <set>
 
@@ -70,7 +71,7 @@ double largest_angle(const RefinedMesh& r, const std::array<int, 3>& f) {
     const Eigen::Vector3d p = r.positions[static_cast<size_t>(f[static_cast<size_t>(k)])];
     const Eigen::Vector3d u = r.positions[static_cast<size_t>(f[static_cast<size_t>((k + 1) % 3)])] - p;
     const Eigen::Vector3d v = r.positions[static_cast<size_t>(f[static_cast<size_t>((k + 2) % 3)])] - p;
-    largest = std::max(largest, std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / M_PI);
+    largest = std::max(largest, std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / std::numbers::pi);
   }
   return largest;
 }
@@ -109,7 +110,8 @@ TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
     for (const auto& c : chords) paths.push_back({c[0], c[1]});
   }
   // Chords that later rounds split are no edges any more: the others are the constrained edges.
-  std::erase_if(paths, [&](const std::vector<int>& p) { return !find_halfedge(r.mesh, VertexId(p[0]), VertexId(p[1])).valid(); });
+  std::erase_if(
+      paths, [&](const std::vector<int>& p) { return !find_halfedge(r.mesh, VertexId(p[0]), VertexId(p[1])).valid(); });
   ASSERT_GT(paths.size(), 300u);
   const RefinedMesh before = r;
   auto caps = [](const RefinedMesh& m) {
@@ -164,7 +166,7 @@ TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
     const Eigen::Vector3d px = r.positions[static_cast<size_t>(x)], py = r.positions[static_cast<size_t>(y)];
     const Eigen::Vector3d normal = (pw - pu).cross(px - pu);
     const bool convex = (py - pu).cross(px - pu).dot(normal) > 0 && (pw - py).cross(px - py).dot(normal) > 0;
-    if (convex) EXPECT_LE(angle(x, u, w) + angle(y, w, u), M_PI * (1 + 1e-6)) << "edge " << u << "-" << w;
+    if (convex) EXPECT_LE(angle(x, u, w) + angle(y, w, u), std::numbers::pi * (1 + 1e-6)) << "edge " << u << "-" << w;
   }
 }
 

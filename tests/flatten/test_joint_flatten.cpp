@@ -330,8 +330,9 @@ TEST(flatten_joint, AssemblyStructureIsSharedOnlyBySubproblemsOfTheSameFaces) {
   SecondSubproblem q = second_subproblem(900, 400, other_cholesky);
   const BarrierResult other = solve_convex_subproblem(q.jp.subproblem, q.X, o, other_cholesky, &cache);
   EXPECT_NE(cache.pattern.index.data(), index) << "kept for other faces";
-  EXPECT_EQ(cache.var.size(), static_cast<size_t>(q.jp.subproblem.meshes[0].F.rows() + q.jp.subproblem.meshes[1].F.rows() +
-                                                   q.jp.subproblem.ghosts.F.rows()));
+  EXPECT_EQ(cache.var.size(),
+            static_cast<size_t>(q.jp.subproblem.meshes[0].F.rows() + q.jp.subproblem.meshes[1].F.rows() +
+                                q.jp.subproblem.ghosts.F.rows()));
   EXPECT_EQ(other.X, solve_convex_subproblem(q.jp.subproblem, q.X, o, other_cholesky).X);
 }
 
