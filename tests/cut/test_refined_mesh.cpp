@@ -12,6 +12,30 @@
 namespace liftmap {
 namespace {
 
+/// One round of splits: of `tries` random faces, each one whose neighbourhood this round has not touched yet (at most
+/// one chord per face) gets split_face(halfedges, id of the next new vertex, splits, chords); then the splits are
+/// made. Returns the round's chords.
+template <class SplitFace>
+std::vector<std::array<int, 2>> split_random_faces(RefinedMesh& r, const Mesh& input, std::mt19937& rng, int tries,
+                                                   SplitFace&& split_face) {
+  std::vector<EdgeSplit> splits;
+  std::vector<std::array<int, 2>> chords;
+  std::vector<char> face_used(static_cast<size_t>(r.mesh.n_faces()), 0);
+  const int n_old = r.n_vertices();
+  for (int i = 0; i < tries; ++i) {
+    const FaceId f(static_cast<int>(rng() % static_cast<unsigned>(r.mesh.n_faces())));
+    const auto fh = r.mesh.face_halfedges(f);
+    bool busy = face_used[static_cast<size_t>(f.idx)] != 0;
+    for (const HalfedgeId h : fh) busy = busy || face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)];
+    if (busy) continue;
+    face_used[static_cast<size_t>(f.idx)] = 1;
+    for (const HalfedgeId h : fh) face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)] = 1;
+    split_face(fh, n_old + static_cast<int>(splits.size()), splits, chords);
+  }
+  split_refined_mesh(r, input, splits, chords);
+  return chords;
+}
+
 // Random edge splits and chords keep the surface: same area, closed genus 0, provenance on the input.
 TEST(cut_refined_mesh, RandomSplitsKeepTheSurface) {
   const auto in = test::load("hand");
@@ -19,29 +43,15 @@ TEST(cut_refined_mesh, RandomSplitsKeepTheSurface) {
   RefinedMesh r = make_refined_mesh(input, in.V);
   std::mt19937 rng(7);
   for (int round = 0; round < 5; ++round) {
-    std::vector<EdgeSplit> splits;
-    std::vector<std::array<int, 2>> chords;
-    std::vector<char> face_used(static_cast<size_t>(r.mesh.n_faces()), 0);
-    const int n_old = r.n_vertices();
-    for (int i = 0; i < 200; ++i) {
-      const FaceId f(static_cast<int>(rng() % static_cast<unsigned>(r.mesh.n_faces())));
-      const auto fh = r.mesh.face_halfedges(f);
-      // Skip faces whose neighbours were used this round, to keep at most one chord per face.
-      bool busy = face_used[static_cast<size_t>(f.idx)] != 0;
-      for (const HalfedgeId h : fh) busy = busy || face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)];
-      if (busy) continue;
-      face_used[static_cast<size_t>(f.idx)] = 1;
-      for (const HalfedgeId h : fh) face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)] = 1;
+    const auto chords = split_random_faces(r, input, rng, 200, [&](const auto& fh, int id0, auto& splits, auto& ch) {
       // Split two edges of f at random points and join them; three points on the third edge, no chord.
       const double t0 = std::uniform_real_distribution<double>(0.05, 0.95)(rng);
       const double t1 = std::uniform_real_distribution<double>(0.05, 0.95)(rng);
-      const int id0 = n_old + static_cast<int>(splits.size());
       splits.push_back({r.mesh.tail(fh[0]).idx, r.mesh.head(fh[0]).idx, t0});
       splits.push_back({r.mesh.tail(fh[1]).idx, r.mesh.head(fh[1]).idx, t1});
-      chords.push_back({id0, id0 + 1});
+      ch.push_back({id0, id0 + 1});
       for (const double t : {0.2, 0.5, 0.7}) splits.push_back({r.mesh.tail(fh[2]).idx, r.mesh.head(fh[2]).idx, t});
-    }
-    split_refined_mesh(r, input, splits, chords);
+    });
     for (const auto& c : chords) {
       EXPECT_TRUE(find_halfedge(r.mesh, VertexId(c[0]), VertexId(c[1])).valid());
     }
@@ -86,27 +96,14 @@ TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
   std::mt19937 rng(11);
   std::vector<std::vector<int>> paths;
   for (int round = 0; round < 3; ++round) {
-    std::vector<EdgeSplit> splits;
-    std::vector<std::array<int, 2>> chords;
-    std::vector<char> face_used(static_cast<size_t>(r.mesh.n_faces()), 0);
-    const int n_old = r.n_vertices();
-    for (int i = 0; i < 300; ++i) {
-      const FaceId f(static_cast<int>(rng() % static_cast<unsigned>(r.mesh.n_faces())));
-      const auto fh = r.mesh.face_halfedges(f);
-      bool busy = face_used[static_cast<size_t>(f.idx)] != 0;
-      for (const HalfedgeId h : fh) busy = busy || face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)];
-      if (busy) continue;
-      face_used[static_cast<size_t>(f.idx)] = 1;
-      for (const HalfedgeId h : fh) face_used[static_cast<size_t>(r.mesh.face(Mesh::twin(h)).idx)] = 1;
+    const auto chords = split_random_faces(r, input, rng, 300, [&](const auto& fh, int id0, auto& splits, auto& ch) {
       // A chord cutting off corner 1 of the face close to it, and a point near the end of the third edge.
       const double near = std::uniform_real_distribution<double>(0.01, 0.05)(rng);
-      const int id0 = n_old + static_cast<int>(splits.size());
       splits.push_back({r.mesh.tail(fh[0]).idx, r.mesh.head(fh[0]).idx, 1 - near});
       splits.push_back({r.mesh.tail(fh[1]).idx, r.mesh.head(fh[1]).idx, near});
       splits.push_back({r.mesh.tail(fh[2]).idx, r.mesh.head(fh[2]).idx, 0.5 + near});
-      chords.push_back({id0, id0 + 1});
-    }
-    split_refined_mesh(r, input, splits, chords);
+      ch.push_back({id0, id0 + 1});
+    });
     for (const auto& c : chords) paths.push_back({c[0], c[1]});
   }
   // Chords that later rounds split are no edges any more: the others are the constrained edges.
