@@ -143,17 +143,31 @@ TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
       EXPECT_GE((a - p).cross(b - p).dot(nrm), -tol) << "face " << f << " leaves its input face";
     }
   }
-  // Locally Delaunay: every edge inside one input face that is not a chord, where the flip would be convex, has
-  // opposite angles summing to at most pi.
-  std::set<std::pair<int, int>> fixed;
-  for (const auto& p : paths) fixed.insert({std::min(p[0], p[1]), std::max(p[0], p[1])});
+  // Locally Delaunay: every edge inside one input face that is not a chord, where the flip would be convex and
+  // would not join two chord vertices (boundary vertices once cut), has opposite angles summing to at most pi. No
+  // edge between two chord vertices is new.
+  std::set<std::pair<int, int>> fixed, old_edges;
+  std::set<int> on_path;
+  for (const auto& p : paths) {
+    fixed.insert({std::min(p[0], p[1]), std::max(p[0], p[1])});
+    on_path.insert(p.begin(), p.end());
+  }
+  for (int e = 0; e < before.mesh.n_edges(); ++e) {
+    const HalfedgeId h = Mesh::halfedge(EdgeId(e));
+    const int u = before.mesh.tail(h).idx, w = before.mesh.head(h).idx;
+    old_edges.insert({std::min(u, w), std::max(u, w)});
+  }
   for (int e = 0; e < r.mesh.n_edges(); ++e) {
     const HalfedgeId h = Mesh::halfedge(EdgeId(e)), t = Mesh::twin(h);
     const int u = r.mesh.tail(h).idx, w = r.mesh.head(h).idx;
+    if (on_path.count(u) && on_path.count(w)) {
+      EXPECT_TRUE(old_edges.count({std::min(u, w), std::max(u, w)})) << "new edge " << u << "-" << w;
+    }
     if (fixed.count({std::min(u, w), std::max(u, w)})) continue;
     const int f1 = r.mesh.face(h).idx, f2 = r.mesh.face(t).idx;
     if (r.input_face[static_cast<size_t>(f1)] != r.input_face[static_cast<size_t>(f2)]) continue;
     const int x = r.mesh.head(r.mesh.next(h)).idx, y = r.mesh.head(r.mesh.next(t)).idx;
+    if (on_path.count(x) && on_path.count(y)) continue;
     const auto angle = [&](int at, int a, int b) {
       const Eigen::Vector3d p = r.positions[static_cast<size_t>(at)];
       const Eigen::Vector3d da = r.positions[static_cast<size_t>(a)] - p, db = r.positions[static_cast<size_t>(b)] - p;
