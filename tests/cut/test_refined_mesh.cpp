@@ -177,7 +177,9 @@ TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
     const Eigen::Vector3d px = r.positions[static_cast<size_t>(x)], py = r.positions[static_cast<size_t>(y)];
     const Eigen::Vector3d normal = (pw - pu).cross(px - pu);
     const bool convex = (py - pu).cross(px - pu).dot(normal) > 0 && (pw - py).cross(px - py).dot(normal) > 0;
-    if (convex) EXPECT_LE(angle(x, u, w) + angle(y, w, u), std::numbers::pi * (1 + 1e-6)) << "edge " << u << "-" << w;
+    if (convex) {
+      EXPECT_LE(angle(x, u, w) + angle(y, w, u), std::numbers::pi * (1 + 1e-6)) << "edge " << u << "-" << w;
+    }
   }
 }
 
