@@ -7,7 +7,7 @@ JOBS       ?= 2
 LIFTMAP    := $(BUILD)/app/liftmap
 SOURCES    := $(shell find src app tests bench -name '*.cpp' -o -name '*.h' 2>/dev/null)
 
-.PHONY: all deps meshes build build-asan test test-slow demo bench lint format clean
+.PHONY: all deps meshes build build-asan test test-slow test-blas-kernels demo bench lint format clean
 
 all: build
 
@@ -38,6 +38,10 @@ test: meshes build build-asan
 
 test-slow: meshes build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L slow
+
+# The solver, flattening and whole-map tests (ctest label `solver`) once per OpenBLAS kernel the CPU supports.
+test-blas-kernels: meshes build
+	./scripts/test-blas-kernels.sh $(BUILD) $(JOBS)
 
 demo: meshes build
 	./scripts/demo.sh $(LIFTMAP)

@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_ISOTROPIC"))
     options.solver.isotropic_anticonformal_curvature = std::atoi(g) != 0;
   if (std::getenv("PROFILE_P_INF")) options.p = std::numeric_limits<double>::infinity();
+  if (const char* g = std::getenv("PROFILE_PD_REFINEMENTS")) options.solver.max_refinements = std::atoi(g);
   int outer = 1;
   struct Centring {
     int index = -1, steps = 0, damped = 0, repaired = 0;

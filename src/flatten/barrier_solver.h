@@ -110,7 +110,10 @@ struct BarrierOptions {
   /// (profile_flatten, 10 outer iterations, same final energies to 7 digits): man-homer 379 -> 334 Newton steps
   /// (24.4 -> 19.7 s), fandisk-bunny 214 -> 170 (26.7 -> 18.8 s), camel-cow 285 -> 287.
   bool isotropic_anticonformal_curvature = true;
-  int max_newton_steps = 400;                                 ///< in total, over all centrings
+  int max_newton_steps = 400;  ///< in total, over all centrings
+  /// Primal-dual method only: iterative refinement steps per Newton solve at most (0: none). See
+  /// solve_convex_subproblem_primal_dual.
+  int max_refinements = 3;
   std::function<void(const BarrierStep&)> on_step = nullptr;  ///< called after every Newton step if set
 };
 

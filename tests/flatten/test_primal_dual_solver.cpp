@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "disk_patches.h"
 #include "flatten/barrier_solver.h"
@@ -19,21 +21,37 @@ namespace {
 
 using testing::Combo;
 
-// The gap the primal-dual method certifies on these instances: its last iterations reach the limit of double
-// precision near a relative gap of 2e-7 for p = 2 (slacks of nearly active cones below 1e-10).
-constexpr double kGap = 1e-6;
+// The gap the barrier method certifies on these instances, asked of the primal-dual method too.
+constexpr double kGap = 1e-8;
+// Relative gap that a stop at the precision limit must still have certified. Measured on the camel-cow patches
+// under every OpenBLAS kernel (Prescott, Nehalem, Sandybridge, Haswell, SkylakeX, Zen): 2.1e-7 .. 2.3e-7 for p = 2
+// (stopped at the limit), 2e-9 .. 1e-8 for p = inf (converged); fifty times the worst as the margin.
+constexpr double kLimitGap = 1e-5;
+// Rounding of the objective (10a) recomputed from positions, relative.
+constexpr double kRounding = 1e-12;
 
 class flatten_primal_dual : public ::testing::TestWithParam<Combo> {};
 
+// What a result of the primal-dual method guarantees: converged with the requested gap, or stopped at the precision
+// limit (reported as such) with a finite certified gap.
+void expect_honest_certificate(const BarrierResult& r, double requested_gap) {
+  if (r.converged) {
+    EXPECT_LE(r.gap_bound, requested_gap * r.objective);
+  } else {
+    EXPECT_EQ(r.stalled_centrings, 1) << "an uncertified stop must name the precision limit";
+    EXPECT_LE(r.gap_bound, kLimitGap * r.objective);
+  }
+}
+
 // The primal-dual solver against the barrier method (two independent formulations of the same problem: barrier
 // terms on the eliminated auxiliaries against explicit cones with dual variables) on the first subproblem of a
-// camel-cow patch pair: the same optimum, a certified gap, the gauge kept, and a strictly feasible result that no
-// perturbation improves on.
+// camel-cow patch pair: certificates that hold against each other (each objective minus the other's is at most its
+// own gap), the gauge kept, and a strictly feasible result that no perturbation improves on by more than its gap.
 TEST_P(flatten_primal_dual, AgreesWithTheBarrierMethod) {
   const Combo combo = GetParam();
   const JointFlattenProblem jp = testing::camel_cow_patch_problem(combo);
   SparseCholesky chol_b, chol_p;
-  const BarrierResult rb = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol_b);
+  const BarrierResult rb = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{.relative_gap = kGap}, chol_b);
   BarrierOptions po{.relative_gap = kGap};
   if (std::getenv("PD_TRACE")) {
     po.on_step = [](const BarrierStep& st) {
@@ -42,17 +60,14 @@ TEST_P(flatten_primal_dual, AgreesWithTheBarrierMethod) {
     };
   }
   const BarrierResult rp = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, po, chol_p);
-  std::printf("%s: barrier %.12g (%d Newton steps), primal-dual %.12g (%d iterations, gap %.2e)\n", combo.name,
-              rb.objective, rb.newton_steps, rp.objective, rp.newton_steps, rp.gap_bound);
-  // p = 2: the objective cones' scaling turns the 2 x 2 system in (T_0, T_1) into a difference of nearly equal terms
-  // once the cones are nearly active, and the dual residual stops shrinking near a relative gap of 2e-6 (p2_max) or
-  // 2e-7 (p2_norm): the result agrees with the barrier method's, but is not certified.
-  if (std::isinf(combo.p)) {
-    EXPECT_TRUE(rp.converged);
-    EXPECT_LE(rp.gap_bound, kGap * rp.objective);
-  }
-  EXPECT_LE(rp.gap_bound, 1e-5 * rp.objective);
-  EXPECT_NEAR(rp.objective, rb.objective, 1e-6 * rb.objective);
+  std::printf("%s: barrier %.12g (%d Newton steps, gap %.2e), primal-dual %.12g (%d iterations, gap %.2e, %s)\n",
+              combo.name, rb.objective, rb.newton_steps, rb.gap_bound, rp.objective, rp.newton_steps, rp.gap_bound,
+              rp.converged ? "converged" : "precision limit");
+  ASSERT_TRUE(rb.converged);
+  expect_honest_certificate(rp, kGap);
+  const double rounding = kRounding * rb.objective;
+  EXPECT_LE(rp.objective - rb.objective, rp.gap_bound + rounding);
+  EXPECT_LE(rb.objective - rp.objective, rb.gap_bound + rounding);
   EXPECT_LT(rp.newton_steps, 60);
   EXPECT_EQ(rp.X.row(0), jp.X0.row(0)) << "the gauge vertex moved";
   for (int k = 0; k < 2; ++k) {
@@ -64,7 +79,7 @@ TEST_P(flatten_primal_dual, AgreesWithTheBarrierMethod) {
     Eigen::MatrixXd D = Eigen::MatrixXd::NullaryExpr(rp.X.rows(), 2, [&] { return normal(rng); });
     D.row(0).setZero();
     for (const double eps : {1e-3, 1e-5}) {
-      EXPECT_GE(subproblem_objective(jp.subproblem, rp.X + eps * D), rp.objective * (1 - kGap));
+      EXPECT_GE(subproblem_objective(jp.subproblem, rp.X + eps * D), rp.objective - rp.gap_bound - rounding);
     }
   }
 }
@@ -110,13 +125,24 @@ TEST(flatten_primal_dual, StopsAtThePrecisionLimit) {
   ASSERT_TRUE(certified.converged);
   BarrierOptions unreachable = opt.solver;
   unreachable.relative_gap = 1e-15;
+  std::vector<double> mu;  // per iteration
+  unreachable.on_step = [&](const BarrierStep& st) { mu.push_back(1 / st.t); };
   const BarrierResult r = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, unreachable, chol);
-  std::printf("certified %.10g in %d iterations; gap 1e-15 requested: %.10g in %d iterations (gap %.2g)\n",
-              certified.objective, certified.newton_steps, r.objective, r.newton_steps, r.gap_bound);
+  std::printf("certified %.10g in %d iterations (gap %.2g); gap 1e-15 requested: %.10g in %d iterations (gap %.2g)\n",
+              certified.objective, certified.newton_steps, certified.gap_bound, r.objective, r.newton_steps,
+              r.gap_bound);
   EXPECT_FALSE(r.converged);
   EXPECT_EQ(r.stalled_centrings, 1);
-  EXPECT_LT(r.newton_steps, certified.newton_steps + 30);
-  EXPECT_NEAR(r.objective, certified.objective, 2 * opt.solver.relative_gap * certified.objective);
+  // It went on while it made progress, then stopped within the stall rules' windows (five iterations without halving
+  // the gap, or two short steps), not at its iteration budget.
+  ASSERT_FALSE(mu.empty());
+  const auto best = std::min_element(mu.begin(), mu.end());
+  EXPECT_LE(mu.end() - best, 8) << "iterations after the smallest gap";
+  EXPECT_LT(r.newton_steps, unreachable.max_newton_steps);
+  // The gap it reports is certified: both results are within their gaps of the same optimum.
+  EXPECT_LT(r.gap_bound, certified.gap_bound);
+  EXPECT_LE(certified.objective - r.objective, certified.gap_bound);
+  EXPECT_LE(r.objective - certified.objective, r.gap_bound + kRounding * r.objective);
   for (int k = 0; k < 2; ++k) {
     EXPECT_GT(signed_double_areas(jp.F[k], mesh_positions(jp.subproblem, k, r.X)).minCoeff(), 0);
   }
