@@ -1,6 +1,6 @@
 #include "flatten/sparse_cholesky.h"
 
-#include <dlfcn.h>
+#include <dlfcn.h>  // dlsym: OpenBLAS's thread-count calls, if libblas.so.3 is OpenBLAS
 #include <omp.h>
 
 #include <cholmod.h>
@@ -17,44 +17,9 @@ namespace liftmap {
 namespace {
 thread_local bool g_serial_regions = false;  // set by SerialBlas on the thread that runs CHOLMOD
 }
-}  // namespace liftmap
 
-// GCC's entry point of every `#pragma omp parallel` region, CHOLMOD's included (it calls nothing else of libgomp's
-// region ABI), defined here so that the executable's definition comes first. While SerialBlas is active on this
-// thread, a region runs its body directly: that is what a team of one thread does (work-sharing constructs inside
-// bind to the implicit one-thread team, as orphaned ones do). libgomp itself still allocates a team and makes a
-// futex wake-up syscall for every region, even one serialised to a single thread: CHOLMOD opens one per supernode
-// and per descendant update, ~15k per factorisation on camel-cow at ~1.2 us each, with cache effects on top.
-// Measured (profile_flatten, camel-cow, one outer iteration, one run after the other): factorisation 52 -> 29 ms
-// per Newton step, the outer iteration 8.1 -> 6.5 s. Elsewhere (our own loops, a host application's) every region
-// goes to libgomp. If this definition is not the one the dynamic linker binds (a module loaded with RTLD_LOCAL, a
-// runtime other than libgomp), nothing changes but the speed: SerialBlas still keeps the regions to one thread.
-// The name is libgomp's ABI, hence outside our naming convention.
-extern "C" void GOMP_parallel(  // NOLINT(readability-identifier-naming)
-    void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
-  using Fn = void (*)(void (*)(void*), void*, unsigned, unsigned);
-  static const Fn real = reinterpret_cast<Fn>(dlsym(RTLD_NEXT, "GOMP_parallel"));
-  if (liftmap::g_serial_regions || real == nullptr) {
-    fn(data);
-    return;
-  }
-  real(fn, data, num_threads, flags);
-}
+bool serial_cholmod_call_active() { return g_serial_regions; }
 
-// SuiteSparse's clock, which CHOLMOD reads around every BLAS call of its supernodal factorisation for its own
-// statistics (Common->CHOLMOD_CPU_*_TIME; 48 call sites in Debian's libcholmod 3.0.14, which is built with them).
-// liftmap never reads those statistics: while SerialBlas is active on this thread (our factorisations) the clock
-// stands still, elsewhere it is SuiteSparse's own. Its clock_gettime calls were 2.7% of the main thread's samples
-// on man-homer (perf, 4 outer iterations). Defined here for the same reason as GOMP_parallel; the name is
-// SuiteSparse's ABI.
-extern "C" double SuiteSparse_time(void) {  // NOLINT(readability-identifier-naming)
-  using Fn = double (*)();
-  static const Fn real = reinterpret_cast<Fn>(dlsym(RTLD_NEXT, "SuiteSparse_time"));
-  if (liftmap::g_serial_regions || real == nullptr) return 0;
-  return real();
-}
-
-namespace liftmap {
 namespace {
 
 // Runs CHOLMOD single-threaded while it lives. CHOLMOD's supernodal kernels call BLAS on many small blocks, and a
@@ -156,8 +121,8 @@ struct SparseCholesky::Impl {
     cm.quick_return_if_not_posdef = 1;
     // CHOLMOD's default supernode relaxation (nrelax 4/16/48, zrelax 0.8/0.1/0.05). Four times coarser supernodes
     // were faster while libgomp's per-region cost came with every supernode (0.091 -> 0.048 s per factorisation
-    // on camel-cow); with the regions inline (GOMP_parallel above) the defaults are faster again. Measured with
-    // bench/flatten/profile_flatten, one outer iteration, alternating runs: camel-cow 31.5 -> 25.5 ms per
+    // on camel-cow); with the regions inline (app/inline_openmp_regions.cpp) the defaults are faster again. Measured
+    // with bench/flatten/profile_flatten, one outer iteration, alternating runs: camel-cow 31.5 -> 25.5 ms per
     // factorisation, fandisk-bunny 101-102 -> 83-94 ms. Finer ones hold fewer explicit zeros (camel-cow: 2.36M
     // stored values for 1.59M nonzeros of L at the defaults, 1.98M at zrelax 0.2/0.02/0.01), which the solve reads
     // faster, but the factorisation lost more than the solve gained (19.5 + 7.9 ms against 22.9 + 6.7 ms).

@@ -53,4 +53,10 @@ class SparseCholesky {
   std::unique_ptr<Impl> impl_;
 };
 
+/// True on the calling thread while a SparseCholesky call runs CHOLMOD single-threaded (its OpenMP regions serialised,
+/// OpenBLAS at one thread). The library itself defines no symbol of another library; an executable that wants
+/// CHOLMOD's serialised regions to run inline, without libgomp's per-region cost, can interpose libgomp's region
+/// entry point and consult this (app/inline_openmp_regions.cpp does, for the liftmap executable and the benchmarks).
+[[nodiscard]] bool serial_cholmod_call_active();
+
 }  // namespace liftmap

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+// The implementation with internal linkage: a host program that uses stb_image_write itself keeps its own.
+#define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
