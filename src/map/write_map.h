@@ -20,16 +20,31 @@ namespace liftmap {
 /// \throw IoError if the file cannot be written
 void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& images, const std::string& header);
 
-/// Reads a vertex map written by write_vertex_map.
+/// How far a map file's barycentric coordinates may be from a point of its face: each at least -kTolerance, their
+/// sum within kTolerance of 1 (room for coordinates written with 7 significant digits).
+struct BarycentricTolerance {
+  static constexpr double kTolerance = 1e-6;
+};
+
+/// Reads a vertex map written by write_vertex_map and checks that every line is a point of the target mesh.
 /// \param n_target_faces number of faces of the target mesh, to check indices
-/// \throw IoError naming the file and line for a malformed line or an index out of range
+/// \throw IoError (exit 3) naming the file and line for a malformed line (not 4 numbers) or a face that is not an
+///        index of the target mesh; InvalidInputError (exit 4) naming the file and line for barycentric
+///        coordinates that are not finite, negative beyond BarycentricTolerance or do not sum to 1 within it
 std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_faces);
+
+/// read_vertex_map from a stream; `name` stands for the file in messages.
+std::vector<SurfacePoint> read_vertex_map(std::istream& in, const std::string& name, int n_target_faces);
 
 /// Writes the same map as a sparse barycentric matrix: `i j w` per non-zero (rows: source vertices, columns:
 /// target vertices, 0-based).
 /// \param F_target #F by 3 faces of the target mesh
 void write_barycentric_matrix(const std::string& path, const std::vector<SurfacePoint>& images,
                               const Eigen::MatrixXi& F_target);
+
+/// The names of every file `liftmap map` writes into its output folder (README, "Command line"), those of
+/// write_cut included, report.json last (the order they are written in).
+std::vector<std::string> map_output_names();
 
 /// The report of a map as JSON: sizes, landmarks, options, timings, energies, distortion, verification.
 /// \param a, b the input meshes, read from path_a, path_b
