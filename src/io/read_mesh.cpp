@@ -1,24 +1,29 @@
 #include "io/read_mesh.h"
 
 #include <CGAL/IO/PLY.h>
-#include <CGAL/IO/STL.h>
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
 
-// OFF and OBJ are parsed here because their errors must name the line; CGAL's readers only say "failed".
-// PLY and STL (binary formats, where a line number means nothing) go through CGAL's readers.
+// OFF, OBJ and STL are parsed here because their errors must name the line or the count; CGAL's readers only
+// say "failed". PLY (many property layouts, three encodings) goes through CGAL's reader.
 
 namespace liftmap {
 
@@ -26,6 +31,8 @@ namespace {
 
 using Point = std::array<double, 3>;
 using Triangle = std::array<int, 3>;
+
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -47,7 +54,9 @@ std::string read_file(const std::string& path) {
 /// Splits text into lines and whitespace-separated tokens, keeping line numbers for messages.
 class LineReader {
  public:
-  LineReader(const std::string& path, const std::string& text) : path_(path), text_(text) {}
+  LineReader(const std::string& path, const std::string& text) : path_(path), text_(text) {
+    if (text_.rfind(kByteOrderMark, 0) == 0) pos_ = kByteOrderMark.size();  // a UTF-8 byte-order mark
+  }
 
   /// Advances to the next line that has content (comments after '#' removed); false at end of file.
   bool next_line() {
@@ -137,6 +146,10 @@ TriangleMesh read_off(const std::string& path, const std::string& text) {
     header = r.tokens();
   }
   if (header.size() < 2) r.fail("expected 'vertices faces [edges]' counts");
+  if (header.size() > 3) {
+    r.fail(std::to_string(header.size() - 3) + " more values after the 'vertices faces edges' counts: liftmap reads " +
+           "an OFF with one vertex or face per line (is the file written on one line?)");
+  }
   const long long nv = r.to_int(header[0]);
   const long long nf = r.to_int(header[1]);
   if (nv < 0 || nf < 0) r.fail("negative vertex or face count");
@@ -182,6 +195,10 @@ TriangleMesh read_off(const std::string& path, const std::string& text) {
     }
     triangles.push_back(tri);
   }
+  if (r.next_line()) {
+    r.fail("the header announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+           " faces, but the file goes on: the counts do not match the content");
+  }
   return to_matrices(points, triangles);
 }
 
@@ -225,19 +242,149 @@ TriangleMesh read_obj(const std::string& path, const std::string& text) {
   return to_matrices(points, triangles);
 }
 
-template <class ReadFn>
-TriangleMesh read_with_cgal(const std::string& path, const std::string& format, ReadFn read) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open file");
+/// Merges STL's per-triangle corners into vertices in order of first appearance, as CGAL's reader did: the
+/// numbering landmark files of STL meshes rely on. Corners merge where their coordinates are equal (0 and -0
+/// too).
+class CornerMerger {
+ public:
+  int index(const Point& p) {
+    std::array<std::uint64_t, 3> key{};
+    for (size_t k = 0; k < 3; ++k) {
+      const double x = p[k] == 0 ? 0.0 : p[k];
+      std::memcpy(&key[k], &x, sizeof x);
+    }
+    const auto [it, fresh] = index_.emplace(key, static_cast<int>(points.size()));
+    if (fresh) points.push_back(p);
+    return it->second;
+  }
+  std::vector<Point> points;
+
+ private:
+  std::map<std::array<std::uint64_t, 3>, int> index_;
+};
+
+TriangleMesh read_binary_stl(const std::string& path, const std::string& data) {
+  constexpr size_t kHeader = 84, kTriangle = 50;
+  if (data.size() < kHeader) {
+    throw IoError(path + ": truncated binary STL: " + std::to_string(data.size()) +
+                  " bytes, less than its 84-byte header");
+  }
+  std::uint32_t n = 0;
+  std::memcpy(&n, data.data() + 80, 4);
+  const size_t expected = kHeader + kTriangle * static_cast<size_t>(n);
+  if (data.size() != expected) {
+    throw IoError(path + ": the binary STL header announces " + std::to_string(n) + " triangles (" +
+                  std::to_string(expected) + " bytes), but the file has " + std::to_string(data.size()) +
+                  " bytes (room for " + std::to_string((data.size() - kHeader) / kTriangle) +
+                  " triangles): the count does not match the content");
+  }
+  CornerMerger merger;
+  std::vector<Triangle> triangles(n);
+  for (size_t t = 0; t < n; ++t) {
+    const char* record = data.data() + kHeader + kTriangle * t + 12;  // after the normal
+    for (size_t k = 0; k < 3; ++k) {
+      float xyz[3];
+      std::memcpy(xyz, record + 12 * k, sizeof xyz);
+      triangles[t][k] = merger.index({xyz[0], xyz[1], xyz[2]});
+    }
+  }
+  return to_matrices(merger.points, triangles);
+}
+
+TriangleMesh read_ascii_stl(const std::string& path, const std::string& text) {
+  LineReader r(path, text);
+  if (!r.next_line() || r.tokens()[0] != "solid") throw IoError(path + ": expected 'solid' to start an ASCII STL");
+  CornerMerger merger;
+  std::vector<Triangle> triangles;
+  std::vector<int> corners;
+  bool in_facet = false, ended = false;
+  while (r.next_line()) {
+    const auto& t = r.tokens();
+    const std::string_view key = t[0];
+    if (ended) r.fail("content after 'endsolid'");
+    if (key == "facet") {
+      if (in_facet) r.fail("'facet' inside a facet (missing 'endfacet')");
+      in_facet = true;
+      corners.clear();
+    } else if (key == "outer" || key == "endloop") {
+      if (!in_facet) r.fail("'" + std::string(key) + "' outside a facet");
+    } else if (key == "vertex") {
+      if (!in_facet) r.fail("'vertex' outside a facet");
+      if (t.size() != 4) r.fail("vertex needs 3 coordinates");
+      corners.push_back(merger.index({r.to_double(t[1]), r.to_double(t[2]), r.to_double(t[3])}));
+    } else if (key == "endfacet") {
+      if (!in_facet) r.fail("'endfacet' without 'facet'");
+      if (corners.size() != 3) {
+        r.fail("facet " + std::to_string(triangles.size()) + " has " + std::to_string(corners.size()) +
+               " vertices; only triangle meshes are supported");
+      }
+      triangles.push_back({corners[0], corners[1], corners[2]});
+      in_facet = false;
+    } else if (key == "endsolid") {
+      if (in_facet) r.fail("'endsolid' inside a facet");
+      ended = true;
+    } else {
+      r.fail("unknown ASCII STL keyword '" + std::string(key) + "'");
+    }
+  }
+  if (in_facet) throw IoError(path + ": truncated: the last facet has no 'endfacet'");
+  if (!ended) throw IoError(path + ": truncated: no 'endsolid'");
+  return to_matrices(merger.points, triangles);
+}
+
+TriangleMesh read_stl(const std::string& path, const std::string& data) {
+  // A binary STL's 80-byte header may start with "solid" too: its size, 84 + 50 n, decides.
+  if (data.size() >= 84) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, data.data() + 80, 4);
+    if (data.size() == 84 + 50 * static_cast<size_t>(n)) return read_binary_stl(path, data);
+  }
+  size_t start = data.rfind(kByteOrderMark, 0) == 0 ? kByteOrderMark.size() : 0;
+  while (start < data.size() && std::isspace(static_cast<unsigned char>(data[start]))) ++start;
+  if (data.compare(start, 5, "solid") == 0 && data.find('\0') == std::string::npos) return read_ascii_stl(path, data);
+  return read_binary_stl(path, data);
+}
+
+/// The line after the header of an ASCII PLY whose first token is not a finite number, if any: CGAL's
+/// reader fails on "nan" and "inf", which are non-finite coordinates to report as such.
+std::optional<std::pair<int, std::string>> ply_non_finite_token(const std::string& path, const std::string& text) {
+  if (text.find("format ascii") == std::string::npos) return std::nullopt;
+  LineReader r(path, text);
+  bool in_body = false;
+  while (r.next_line()) {
+    if (!in_body) {
+      in_body = r.tokens()[0] == "end_header";
+      continue;
+    }
+    for (const std::string_view token : r.tokens()) {
+      double x = 0;
+      std::string_view s = token;
+      if (!s.empty() && (s.front() == '+' || s.front() == '-')) s.remove_prefix(1);
+      const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+      if (ec == std::errc() && p == s.data() + s.size() && !std::isfinite(x)) {
+        return std::pair{r.line_no(), std::string(token)};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+TriangleMesh read_ply(const std::string& path, const std::string& data) {
+  // CGAL's reader wants the "ply" signature first: a byte-order mark before it is skipped.
+  std::istringstream in(data.rfind(kByteOrderMark, 0) == 0 ? data.substr(kByteOrderMark.size()) : data);
   std::vector<CGAL::Simple_cartesian<double>::Point_3> cgal_points;
   std::vector<std::vector<std::size_t>> polygons;
   // CGAL's readers print their own diagnostics to std::cerr; ours below is the one the user should see.
   std::ostringstream cgal_diagnostics;
   std::streambuf* const cerr_buffer = std::cerr.rdbuf(cgal_diagnostics.rdbuf());
-  const bool ok = read(in, cgal_points, polygons);
+  const bool ok = CGAL::IO::read_PLY(in, cgal_points, polygons);
   std::cerr.rdbuf(cerr_buffer);
   if (!ok) {
-    throw IoError(path + ": not a valid " + format + " file (truncated, wrong counts or corrupt data)");
+    if (const auto bad = ply_non_finite_token(path, data)) {
+      throw InvalidInputError(path + ":" + std::to_string(bad->first) + ": non-finite coordinate '" + bad->second +
+                              "'");
+    }
+    throw IoError(path + ": not a valid PLY file (truncated, wrong counts or corrupt data)");
   }
   std::vector<Point> points;
   points.reserve(cgal_points.size());
@@ -253,7 +400,9 @@ TriangleMesh read_with_cgal(const std::string& path, const std::string& format, 
     Triangle tri{};
     for (size_t k = 0; k < 3; ++k) {
       if (poly[k] >= points.size()) {
-        throw IoError(path + ": face " + std::to_string(i) + " references vertex " + std::to_string(poly[k]) +
+        // CGAL stores the file's signed index in a size_t: -5 arrives as 2^64 - 5.
+        const auto index = static_cast<std::int64_t>(poly[k]);
+        throw IoError(path + ": face " + std::to_string(i) + " references vertex " + std::to_string(index) +
                       ", but there are " + std::to_string(points.size()) + " vertices");
       }
       tri[k] = static_cast<int>(poly[k]);
@@ -265,6 +414,20 @@ TriangleMesh read_with_cgal(const std::string& path, const std::string& format, 
 
 }  // namespace
 
+TriangleMesh read_mesh_data(const std::string& data, const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
+    throw IoError(path + ": unknown mesh format '" + ext + "' (expected .off, .obj, .ply or .stl)");
+  }
+  if (data.empty() || data == kByteOrderMark) throw IoError(path + ": empty file");
+  TriangleMesh mesh = ext == ".off"   ? read_off(path, data)
+                      : ext == ".obj" ? read_obj(path, data)
+                      : ext == ".ply" ? read_ply(path, data)
+                                      : read_stl(path, data);
+  if (mesh.F.rows() == 0) throw IoError(path + ": the file contains no complete face (truncated?)");
+  return mesh;
+}
+
 TriangleMesh read_mesh(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
@@ -272,22 +435,7 @@ TriangleMesh read_mesh(const std::string& path) {
   }
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(path + ": no such file");
-  TriangleMesh mesh;
-  if (ext == ".off" || ext == ".obj") {
-    const std::string text = read_file(path);
-    mesh = ext == ".off" ? read_off(path, text) : read_obj(path, text);
-  } else {
-    if (std::filesystem::file_size(path, ec) == 0) throw IoError(path + ": empty file");
-    if (ext == ".ply") {
-      mesh = read_with_cgal(
-          path, "PLY", [](std::istream& in, auto& pts, auto& polys) { return CGAL::IO::read_PLY(in, pts, polys); });
-    } else {
-      mesh = read_with_cgal(
-          path, "STL", [](std::istream& in, auto& pts, auto& polys) { return CGAL::IO::read_STL(in, pts, polys); });
-    }
-  }
-  if (mesh.F.rows() == 0) throw IoError(path + ": the file contains no complete face (truncated?)");
-  return mesh;
+  return read_mesh_data(read_file(path), path);
 }
 
 }  // namespace liftmap

@@ -91,7 +91,7 @@ def main():
             rows += ['facet normal 0 0 0', 'outer loop']
             for k in f:
                 x, y, z = V[k]
-                rows.append('vertex %r %s %r' % (x, 'nan' if j == 0 and k == F[0][0] else repr(y), z))
+                rows.append('vertex %r %s %r' % (x, 'nan' if k == F[0][0] else repr(y), z))
             rows += ['endloop', 'endfacet']
         out = '\n'.join(rows + ['endsolid test']) + '\n'
     else:
