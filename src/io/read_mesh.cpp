@@ -369,9 +369,46 @@ std::optional<std::pair<int, std::string>> ply_non_finite_token(const std::strin
   return std::nullopt;
 }
 
+/// Checks the header of a PLY file before CGAL's reader sees it: that reader indexes its last element without
+/// checking there is one (a "property" line before any "element" line is undefined behaviour, found by
+/// fuzzing) and trusts the element counts.
+void check_ply_header(const std::string& path, const std::string& data) {
+  const size_t end = data.find("end_header");
+  if (end == std::string::npos) throw IoError(path + ": not a PLY file: no 'end_header' line");
+  const std::string header = data.substr(0, end + 10);
+  LineReader r(path, header);
+  if (!r.next_line() || r.tokens()[0] != "ply") throw IoError(path + ": not a PLY file: expected 'ply' first");
+  bool have_element = false, have_format = false;
+  while (r.next_line()) {
+    const auto& t = r.tokens();
+    if (t[0] == "format") {
+      if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian")) {
+        r.fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      }
+      have_format = true;
+    } else if (t[0] == "element") {
+      if (t.size() != 3) r.fail("expected 'element NAME COUNT'");
+      const long long n = r.to_int(t[2]);
+      // Every element takes at least one byte: a larger count cannot be the file's.
+      if (n < 0 || static_cast<unsigned long long>(n) > data.size()) {
+        r.fail("element '" + std::string(t[1]) + "' announces " + std::string(t[2]) + " items, more than a file of " +
+               std::to_string(data.size()) + " bytes can hold");
+      }
+      have_element = true;
+    } else if (t[0] == "property") {
+      if (!have_element) r.fail("'property' before any 'element'");
+    } else if (t[0] != "comment" && t[0] != "obj_info" && t[0] != "end_header") {
+      r.fail("unknown PLY header keyword '" + std::string(t[0]) + "'");
+    }
+  }
+  if (!have_format) throw IoError(path + ": not a PLY file: no 'format' line");
+}
+
 TriangleMesh read_ply(const std::string& path, const std::string& data) {
   // CGAL's reader wants the "ply" signature first: a byte-order mark before it is skipped.
-  std::istringstream in(data.rfind(kByteOrderMark, 0) == 0 ? data.substr(kByteOrderMark.size()) : data);
+  const std::string body = data.rfind(kByteOrderMark, 0) == 0 ? data.substr(kByteOrderMark.size()) : data;
+  check_ply_header(path, body);
+  std::istringstream in(body);
   std::vector<CGAL::Simple_cartesian<double>::Point_3> cgal_points;
   std::vector<std::vector<std::size_t>> polygons;
   // CGAL's readers print their own diagnostics to std::cerr; ours below is the one the user should see.

@@ -1,4 +1,4 @@
-#include "map/write_map.h"
+#include "io/vertex_map.h"
 
 #include <gtest/gtest.h>
 
