@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
@@ -161,7 +163,7 @@ std::string usage_message(const CLI::App* app, const CLI::Error& e) {
 struct PairJob {
   std::string path_a, path_b, landmarks_path, out_dir = "out";
   std::string p = "2", h = "eq3", tree = "mst", solver = "auto";
-  bool no_normalize = false, quiet = false;
+  bool no_normalize = false, quiet = false, fix_orientation = false;
   double tolerance = 1e-3;
   int max_iterations = 10, threads = 0, samples = 2;
 };
@@ -175,6 +177,9 @@ void add_pair_options(CLI::App* cmd, PairJob& job) {
       ->check(CLI::IsMember({"mst", "path"}))
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
+  cmd->add_flag("--fix-orientation", job.fix_orientation,
+                "Reverse the faces of an inside-out mesh (negative signed volume) with a warning, instead of "
+                "rejecting it");
   cmd->add_option("--threads", job.threads,
                   "Threads for the per-face work, 1 to 4 per hardware thread (default: all hardware threads)")
       ->check(CLI::Range(1, max_threads()));
@@ -183,7 +188,28 @@ void add_pair_options(CLI::App* cmd, PairJob& job) {
 struct Inputs {
   liftmap::TriangleMesh a, b;
   liftmap::Landmarks landmarks;
+  bool flipped_a = false, flipped_b = false;  ///< faces reversed by --fix-orientation
 };
+
+/// --fix-orientation: reverses the faces of a mesh whose signed volume is negative, with a warning. Whether
+/// the mesh is mappable otherwise is left to the one validation that follows.
+bool fix_orientation(liftmap::TriangleMesh& mesh, const std::string& path) {
+  if (mesh.F.rows() == 0 || mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows() || !mesh.V.allFinite()) {
+    return false;
+  }
+  const double volume = liftmap::signed_volume(mesh.V, mesh.F);
+  if (!(volume < 0)) return false;
+  mesh.F.col(1).swap(mesh.F.col(2));
+  std::cerr << "liftmap: warning: " << path << " is inside-out (signed volume " << liftmap::figure(volume)
+            << "): its faces are reversed (--fix-orientation); map files into it keep the vertex order of its file\n";
+  return true;
+}
+
+/// Barycentric coordinates of points of a mesh whose faces fix_orientation reversed, in the order of the faces'
+/// vertices in its file.
+void to_file_order(std::vector<liftmap::SurfacePoint>& points) {
+  for (liftmap::SurfacePoint& p : points) std::swap(p.bary[1], p.bary[2]);
+}
 
 /// Reads the inputs of `map` or `cut` and prepares the output folder for the files of `map` (which include
 /// those of `cut`: a `cut` into a map's folder removes the map's files too, so the folder never mixes two runs).
@@ -194,6 +220,10 @@ Inputs read_inputs(const PairJob& job) {
   in.b = liftmap::read_mesh(job.path_b);
   in.landmarks =
       liftmap::read_landmarks(job.landmarks_path, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
+  if (job.fix_orientation) {
+    in.flipped_a = fix_orientation(in.a, job.path_a);
+    in.flipped_b = fix_orientation(in.b, job.path_b);
+  }
   liftmap::prepare_output_folder(job.out_dir, liftmap::map_output_names(),
                                  {job.path_a, job.path_b, job.landmarks_path});
   return in;
@@ -232,12 +262,23 @@ int run_map(const PairJob& job) {
   const liftmap::MapOptions options = map_options(job);
   const liftmap::MapResult map =
       liftmap::map_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options);
-  liftmap::write_vertex_map(out_path(job, "A_to_B.txt"), map.a_to_b,
+  // The map files refer to the faces of the input files, in their files' vertex order.
+  std::vector<liftmap::SurfacePoint> a_to_b = map.a_to_b, b_to_a = map.b_to_a;
+  liftmap::TriangleMesh file_a = in.a, file_b = in.b;
+  if (in.flipped_b) {
+    to_file_order(a_to_b);
+    file_b.F.col(1).swap(file_b.F.col(2));
+  }
+  if (in.flipped_a) {
+    to_file_order(b_to_a);
+    file_a.F.col(1).swap(file_a.F.col(2));
+  }
+  liftmap::write_vertex_map(out_path(job, "A_to_B.txt"), a_to_b,
                             "liftmap map of A = " + job.path_a + " onto B = " + job.path_b);
-  liftmap::write_vertex_map(out_path(job, "B_to_A.txt"), map.b_to_a,
+  liftmap::write_vertex_map(out_path(job, "B_to_A.txt"), b_to_a,
                             "liftmap map of B = " + job.path_b + " onto A = " + job.path_a);
-  liftmap::write_barycentric_matrix(out_path(job, "A_to_B.ijv"), map.a_to_b, in.b.F);
-  liftmap::write_barycentric_matrix(out_path(job, "B_to_A.ijv"), map.b_to_a, in.a.F);
+  liftmap::write_barycentric_matrix(out_path(job, "A_to_B.ijv"), a_to_b, file_b.F);
+  liftmap::write_barycentric_matrix(out_path(job, "B_to_A.ijv"), b_to_a, file_a.F);
   liftmap::write_cut(job.out_dir, map.cut, map.flattening.Phi, map.flattening.Psi);
   liftmap::write_vertex_map(out_path(job, "cut_A_to_B.txt"), map.cut_a_to_b,
                             "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
@@ -251,8 +292,10 @@ int run_map(const PairJob& job) {
   liftmap::write_textured_meshes(job.out_dir, map);
   // Last: a folder with a report.json holds every file of this run.
   liftmap::OutputFile report(out_path(job, "report.json"));
-  const std::string text =
-      liftmap::map_report(map, job.path_a, in.a, job.path_b, in.b, in.landmarks, options).dump(2) + '\n';
+  nlohmann::json report_json = liftmap::map_report(map, job.path_a, in.a, job.path_b, in.b, in.landmarks, options);
+  report_json["input"]["A"]["faces_reversed"] = in.flipped_a;
+  report_json["input"]["B"]["faces_reversed"] = in.flipped_b;
+  const std::string text = report_json.dump(2) + '\n';
   std::fputs(text.c_str(), report.get());
   report.close();
   if (!map.verification.passed) {

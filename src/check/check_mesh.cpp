@@ -96,20 +96,6 @@ void check_coordinate_ranges(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   }
 }
 
-/// Six times the signed volume enclosed by a closed, consistently oriented mesh, about its bounding box centre
-/// (so that a translation does not cost digits): positive when the faces are counter-clockwise seen from outside.
-double six_signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  const Eigen::RowVector3d centre = 0.5 * (V.colwise().maxCoeff() + V.colwise().minCoeff());
-  double sum = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d p = (V.row(F(f, 0)) - centre).transpose();
-    const Eigen::Vector3d q = (V.row(F(f, 1)) - centre).transpose();
-    const Eigen::Vector3d w = (V.row(F(f, 2)) - centre).transpose();
-    sum += p.dot(q.cross(w));
-  }
-  return sum;
-}
-
 }  // namespace
 
 std::string MeshReport::summary() const {
@@ -307,7 +293,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   }
   // The orientation of the whole surface is only defined once it is closed and consistently oriented.
   if (r.genus && r.n_boundary_loops == 0 && r.n_components == 1 && V.allFinite()) {
-    const double volume = six_signed_volume(V, F) / 6;
+    const double volume = signed_volume(V, F);
     if (volume < 0) {
       problems.add("inside-out mesh", "the faces are oriented inward (signed volume " + figure(volume) +
                                           " < 0): reverse the vertex order of every face");
@@ -316,6 +302,19 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   check_coordinate_ranges(V, F, usable, problems);
   r.problems = problems.take();
   return r;
+}
+
+double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  // About the bounding box centre, so that a translation does not cost digits.
+  const Eigen::RowVector3d centre = 0.5 * (V.colwise().maxCoeff() + V.colwise().minCoeff());
+  double sum = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d p = (V.row(F(f, 0)) - centre).transpose();
+    const Eigen::Vector3d q = (V.row(F(f, 1)) - centre).transpose();
+    const Eigen::Vector3d w = (V.row(F(f, 2)) - centre).transpose();
+    sum += p.dot(q.cross(w));
+  }
+  return sum / 6;
 }
 
 void require_mappable(const MeshReport& report, const std::string& path) {

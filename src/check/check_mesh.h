@@ -51,6 +51,11 @@ struct CoordinateLimits {
 /// \param F #F by 3 vertex indices (out-of-range indices are reported, not assumed away)
 MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
+/// The volume a closed, consistently oriented mesh encloses, positive when its faces are counter-clockwise seen
+/// from outside (normals outward), negative for an inside-out mesh. Meaningless for an open mesh.
+/// \param V #V by 3 positions; \param F #F by 3 faces, indices in range
+double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
 /// Throws InvalidInputError("<path>: <summary>") unless the mesh is mappable.
 void require_mappable(const MeshReport& report, const std::string& path);
 

@@ -6,6 +6,7 @@ set -u
 liftmap="$1"
 meshes="$2"
 examples="$3"
+data="$4"
 source "$(dirname "$0")/lib.sh"
 variant="$(dirname "$0")/make_variant.py"
 lm="$examples/sphere-ellipsoid/landmarks.txt"
@@ -32,6 +33,23 @@ rejected "translated by 1e12" translate 1e12 "times the bounding box diagonal .*
 rejected "translated by 1e5" translate 1e5 "at most 1e\+04"
 pair invert ""
 expect "inside-out: check --json" 4 '"kind": "inside-out mesh"' -- check "$tmp/A.off" --json
+
+# --fix-orientation: the inside-out mesh is flipped with a warning and maps as the original does; the map
+# files keep the vertex order of the inside-out file.
+"$variant" invert "$meshes/larger_sphere.off" "$tmp/inside_out.off"
+expect "fix-orientation" 0 "^liftmap: warning: .*inside_out.off is inside-out \(signed volume -[0-9.]+\): its faces are reversed" \
+  -- map "$tmp/inside_out.off" "$meshes/ellipsoid.off" -l "$lm" -o "$tmp/fixed" --quiet --fix-orientation
+require "fix-orientation: verification passed" grep -q '"passed": true' "$tmp/fixed/report.json"
+require "fix-orientation: report says so" grep -q '"faces_reversed": true' "$tmp/fixed/report.json"
+expect "original" 0 ".*" -- map "$meshes/larger_sphere.off" "$meshes/ellipsoid.off" -l "$lm" -o "$tmp/orig" --quiet
+awk '/^#/ { print; next } { print $1, $2, $4, $3 }' "$tmp/orig/B_to_A.txt" >"$tmp/orig_B_to_A_in_inverted_order.txt"
+expect "fix-orientation: B_to_A is the original's, in the inverted file's order" 0 "max error: +0 " -- \
+  eval "$tmp/fixed/B_to_A.txt" "$tmp/orig_B_to_A_in_inverted_order.txt" --target "$tmp/inside_out.off"
+expect "fix-orientation: A_to_B is the original's" 0 "max error: +0 " -- \
+  eval "$tmp/fixed/A_to_B.txt" "$tmp/orig/A_to_B.txt" --target "$meshes/ellipsoid.off"
+printf '0 0\n1 1\n' >"$tmp/two_pairs.txt"
+expect "fix-orientation does not hide other problems" 4 "torus.off: cannot be mapped: .*genus 1" -- \
+  map "$data/bad/torus.off" "$meshes/ellipsoid.off" -l "$tmp/two_pairs.txt" -o "$tmp/torus" --fix-orientation
 
 accepted() {  # NAME KIND VALUE
   pair "$2" "$3"
