@@ -369,16 +369,38 @@ std::optional<std::pair<int, std::string>> ply_non_finite_token(const std::strin
   return std::nullopt;
 }
 
-/// Checks the header of a PLY file before CGAL's reader sees it: that reader indexes its last element without
-/// checking there is one (a "property" line before any "element" line is undefined behaviour, found by
-/// fuzzing) and trusts the element counts.
+bool is_ply_type(std::string_view t) {
+  for (const char* known : {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+                            "int16", "uint16", "int32", "uint32", "float32", "float64"}) {
+    if (t == known) return true;
+  }
+  return false;
+}
+
+/// Checks the header of a PLY file before CGAL's reader sees it, which does not check what it relies on (both
+/// found by fuzzing): a "property" line before any "element" indexes an empty list of elements, and a vertex
+/// coordinate of an integer type is read through a null pointer. Its list counts size a buffer before
+/// anything is read: only 8- and 16-bit count types are accepted, so that a count cannot ask for gigabytes.
 void check_ply_header(const std::string& path, const std::string& data) {
   const size_t end = data.find("end_header");
   if (end == std::string::npos) throw IoError(path + ": not a PLY file: no 'end_header' line");
   const std::string header = data.substr(0, end + 10);
   LineReader r(path, header);
   if (!r.next_line() || r.tokens()[0] != "ply") throw IoError(path + ": not a PLY file: expected 'ply' first");
-  bool have_element = false, have_format = false;
+  bool have_format = false;
+  std::string element;  // the element the properties belong to
+  int vertex_line = 0;
+  std::array<bool, 3> have_xyz{};
+  auto check_vertex_element = [&] {
+    if (vertex_line == 0) return;
+    for (size_t k = 0; k < 3; ++k) {
+      if (!have_xyz[k]) {
+        throw IoError(path + ":" + std::to_string(vertex_line) + ": the vertex element has no '" +
+                      std::string(1, static_cast<char>('x' + k)) + "' property");
+      }
+    }
+    vertex_line = 0;
+  };
   while (r.next_line()) {
     const auto& t = r.tokens();
     if (t[0] == "format") {
@@ -394,13 +416,40 @@ void check_ply_header(const std::string& path, const std::string& data) {
         r.fail("element '" + std::string(t[1]) + "' announces " + std::string(t[2]) + " items, more than a file of " +
                std::to_string(data.size()) + " bytes can hold");
       }
-      have_element = true;
+      check_vertex_element();
+      element = t[1];
+      if (element == "vertex" || element == "vertices") {
+        vertex_line = r.line_no();
+        have_xyz = {};
+      }
     } else if (t[0] == "property") {
-      if (!have_element) r.fail("'property' before any 'element'");
+      if (element.empty()) r.fail("'property' before any 'element'");
+      if (t.size() == 5 && t[1] == "list") {
+        if (t[2] != "uchar" && t[2] != "uint8" && t[2] != "char" && t[2] != "int8" && t[2] != "ushort" &&
+            t[2] != "uint16" && t[2] != "short" && t[2] != "int16") {
+          r.fail("list count type '" + std::string(t[2]) + "' is not supported (uchar, char, ushort or short)");
+        }
+        if (!is_ply_type(t[3])) r.fail("unknown PLY type '" + std::string(t[3]) + "'");
+        if (vertex_line != 0 && (t[4] == "x" || t[4] == "y" || t[4] == "z")) {
+          r.fail("vertex coordinate '" + std::string(t[4]) + "' is a list; float or double is needed");
+        }
+      } else if (t.size() == 3) {
+        if (!is_ply_type(t[1])) r.fail("unknown PLY type '" + std::string(t[1]) + "'");
+        if (vertex_line != 0 && t[2].size() == 1 && t[2][0] >= 'x' && t[2][0] <= 'z') {
+          if (t[1] != "float" && t[1] != "double" && t[1] != "float32" && t[1] != "float64") {
+            r.fail("vertex coordinate '" + std::string(t[2]) + "' has type '" + std::string(t[1]) +
+                   "'; float or double is needed");
+          }
+          have_xyz[static_cast<size_t>(t[2][0] - 'x')] = true;
+        }
+      } else {
+        r.fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
+      }
     } else if (t[0] != "comment" && t[0] != "obj_info" && t[0] != "end_header") {
       r.fail("unknown PLY header keyword '" + std::string(t[0]) + "'");
     }
   }
+  check_vertex_element();
   if (!have_format) throw IoError(path + ": not a PLY file: no 'format' line");
 }
 

@@ -55,5 +55,26 @@ TEST(FuzzRegressions, PlyPropertyBeforeAnyElementIsNamed) {
   }
 }
 
+TEST(FuzzRegressions, PlyHeadersThatCgalWouldMisreadAreNamed) {
+  // A vertex coordinate of an integer type was read through a null pointer (found by fuzz_ply); a 32-bit list
+  // count could size a buffer of gigabytes.
+  const std::pair<const char*, const char*> cases[] = {
+      {"integer_coordinate_text.ply", "fuzz.ply:6: vertex coordinate 'z' has type 'ushort'; float or double is needed"},
+      {"list_coordinate.ply", "fuzz.ply:4: vertex coordinate 'x' is a list; float or double is needed"},
+      {"list_count_uint.ply", "fuzz.ply:8: list count type 'uint' is not supported (uchar, char, ushort or short)"},
+  };
+  for (const auto& [file, message] : cases) {
+    std::ifstream in(testing::test_data(std::string("fuzz-regressions/ply/") + file), std::ios::binary);
+    std::ostringstream data;
+    data << in.rdbuf();
+    try {
+      fuzz::read_as_fuzzed(".ply", data.str());
+      ADD_FAILURE() << file << ": no error";
+    } catch (const IoError& e) {
+      EXPECT_STREQ(e.what(), message);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace liftmap
