@@ -382,11 +382,11 @@ bool is_ply_type(std::string_view t) {
 /// coordinate of an integer type is read through a null pointer. Its list counts size a buffer before
 /// anything is read: only 8- and 16-bit count types are accepted, so that a count cannot ask for gigabytes.
 void check_ply_header(const std::string& path, const std::string& data) {
-  const size_t end = data.find("end_header");
-  if (end == std::string::npos) throw IoError(path + ": not a PLY file: no 'end_header' line");
-  const std::string header = data.substr(0, end + 10);
-  LineReader r(path, header);
+  // Line by line as CGAL reads it, up to the first line that starts with "end_header" (the words "end_header"
+  // elsewhere in a line do not end the header: found by fuzzing).
+  LineReader r(path, data);
   if (!r.next_line() || r.tokens()[0] != "ply") throw IoError(path + ": not a PLY file: expected 'ply' first");
+  bool ended = false;
   bool have_format = false;
   std::string element;  // the element the properties belong to
   int vertex_line = 0;
@@ -401,9 +401,11 @@ void check_ply_header(const std::string& path, const std::string& data) {
     }
     vertex_line = 0;
   };
-  while (r.next_line()) {
+  while (!ended && r.next_line()) {
     const auto& t = r.tokens();
-    if (t[0] == "format") {
+    if (t[0] == "end_header") {
+      ended = true;
+    } else if (t[0] == "format") {
       if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian")) {
         r.fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
       }
@@ -445,10 +447,11 @@ void check_ply_header(const std::string& path, const std::string& data) {
       } else {
         r.fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
       }
-    } else if (t[0] != "comment" && t[0] != "obj_info" && t[0] != "end_header") {
+    } else if (t[0] != "comment" && t[0] != "obj_info") {
       r.fail("unknown PLY header keyword '" + std::string(t[0]) + "'");
     }
   }
+  if (!ended) throw IoError(path + ": not a PLY file: no 'end_header' line");
   check_vertex_element();
   if (!have_format) throw IoError(path + ": not a PLY file: no 'format' line");
 }
