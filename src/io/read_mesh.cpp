@@ -54,7 +54,9 @@ std::string read_file(const std::string& path) {
 /// Splits text into lines and whitespace-separated tokens, keeping line numbers for messages.
 class LineReader {
  public:
-  LineReader(const std::string& path, const std::string& text) : path_(path), text_(text) {
+  /// \param hash_comments whether '#' starts a comment (OFF, OBJ, STL); PLY has none
+  LineReader(const std::string& path, const std::string& text, bool hash_comments = true)
+      : path_(path), text_(text), hash_comments_(hash_comments) {
     if (text_.rfind(kByteOrderMark, 0) == 0) pos_ = kByteOrderMark.size();  // a UTF-8 byte-order mark
   }
 
@@ -70,7 +72,9 @@ class LineReader {
         const auto u = static_cast<unsigned char>(c);
         if (u == 0 || (u < 32 && c != '\t' && c != '\r')) fail("not a text line (binary data?)");
       }
-      if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+      if (const size_t hash = line.find('#'); hash_comments_ && hash != std::string_view::npos) {
+        line = line.substr(0, hash);
+      }
       tokens_.clear();
       size_t i = 0;
       while (i < line.size()) {
@@ -112,6 +116,7 @@ class LineReader {
  private:
   const std::string& path_;
   const std::string& text_;
+  bool hash_comments_ = true;
   size_t pos_ = 0;
   int line_no_ = 0;
   std::vector<std::string_view> tokens_;
@@ -349,7 +354,7 @@ TriangleMesh read_stl(const std::string& path, const std::string& data) {
 /// reader fails on "nan" and "inf", which are non-finite coordinates to report as such.
 std::optional<std::pair<int, std::string>> ply_non_finite_token(const std::string& path, const std::string& text) {
   if (text.find("format ascii") == std::string::npos) return std::nullopt;
-  LineReader r(path, text);
+  LineReader r(path, text, false);
   bool in_body = false;
   while (r.next_line()) {
     if (!in_body) {
@@ -382,9 +387,9 @@ bool is_ply_type(std::string_view t) {
 /// coordinate of an integer type is read through a null pointer. Its list counts size a buffer before
 /// anything is read: only 8- and 16-bit count types are accepted, so that a count cannot ask for gigabytes.
 void check_ply_header(const std::string& path, const std::string& data) {
-  // Line by line as CGAL reads it, up to the first line that starts with "end_header" (the words "end_header"
-  // elsewhere in a line do not end the header: found by fuzzing).
-  LineReader r(path, data);
+  // Line by line as CGAL reads it, up to the first line whose first word is "end_header" (that word elsewhere in
+  // a line, or followed by '#', does not end the header: both found by fuzzing).
+  LineReader r(path, data, false);
   if (!r.next_line() || r.tokens()[0] != "ply") throw IoError(path + ": not a PLY file: expected 'ply' first");
   bool ended = false;
   bool have_format = false;
