@@ -61,7 +61,9 @@ TEST(FuzzRegressions, PlyHeadersThatCgalWouldMisreadAreNamed) {
   const std::pair<const char*, const char*> cases[] = {
       {"integer_coordinate_text.ply", "fuzz.ply:6: vertex coordinate 'z' has type 'ushort'; float or double is needed"},
       {"list_coordinate.ply", "fuzz.ply:4: vertex coordinate 'x' is a list; float or double is needed"},
-      {"list_count_uint.ply", "fuzz.ply:8: list count type 'uint' is not supported (uchar, char, ushort or short)"},
+      {"list_count_uint.ply", "fuzz.ply:8: list count type 'uint' is not supported (uchar or ushort)"},
+      // A signed count of -3 became 2^64 - 3 in CGAL's reader, whose vector threw length_error (fuzz_ply).
+      {"list_count_char_text.ply", "fuzz.ply:8: list count type 'char' is not supported (uchar or ushort)"},
       // "end_header" inside the format line ended liftmap's header check but not CGAL's reader (fuzz_ply).
       {"end_header_inside_a_line_text.ply", "fuzz.ply:3: 'property' before any 'element'"},
       // "end_header#": a comment for liftmap's line reader, not the end of the header for CGAL's (fuzz_ply).
