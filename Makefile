@@ -3,11 +3,14 @@
 
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
+BUILD_FUZZ ?= build-fuzz
+FUZZ_SECONDS ?= 600
+FUZZ_JOBS  ?= 1
 JOBS       ?= 2
 LIFTMAP    := $(BUILD)/app/liftmap
-SOURCES    := $(shell find src app tests bench -name '*.cpp' -o -name '*.h' 2>/dev/null)
+SOURCES    := $(shell find src app tests bench fuzz -name '*.cpp' -o -name '*.h' 2>/dev/null)
 
-.PHONY: all deps meshes build build-asan test test-slow test-blas-kernels demo bench lint format clean
+.PHONY: all deps meshes build build-asan test test-slow test-blas-kernels demo bench fuzz lint format clean
 
 all: build
 
@@ -51,6 +54,15 @@ bench: meshes $(BUILD)/build.ninja
 	cmake --build $(BUILD) --target liftmap benchmarks -j $(JOBS)
 	./bench/run.py $(BUILD)
 
+# libFuzzer targets of the file readers (clang, ASan + UBSan), each run FUZZ_SECONDS (FUZZ_JOBS at a time).
+$(BUILD_FUZZ)/build.ninja: CMakeLists.txt
+	CXX=clang++-14 CC=clang-14 cmake -S . -B $(BUILD_FUZZ) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DLIFTMAP_FUZZ=ON -DLIFTMAP_BUILD_TESTS=OFF
+
+fuzz: deps $(BUILD_FUZZ)/build.ninja
+	cmake --build $(BUILD_FUZZ) --target fuzzers -j $(JOBS)
+	FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_JOBS=$(FUZZ_JOBS) ./scripts/fuzz.sh $(BUILD_FUZZ)
+
 # Formatting and static analysis, as checked by CI.
 lint: build
 	clang-format --dry-run --Werror $(SOURCES)
@@ -60,4 +72,4 @@ format:
 	clang-format -i $(SOURCES)
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN)
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ)

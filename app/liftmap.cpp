@@ -9,17 +9,21 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
 #include "cut/write_cut.h"
 #include "io/landmarks.h"
+#include "io/output_file.h"
+#include "io/output_folder.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "map/map_meshes.h"
@@ -31,71 +35,135 @@ namespace {
 
 using liftmap::ExitCode;
 
-/// Prints the report of one mesh; returns whether it is mappable.
-bool report_mesh(const std::string& path, const liftmap::TriangleMesh& mesh, bool as_json) {
-  const liftmap::MeshReport r = liftmap::check_mesh(mesh.V, mesh.F);
-  if (as_json) {
-    nlohmann::json j;
-    j["mesh"] = path;
-    j["vertices"] = r.n_vertices;
-    j["faces"] = r.n_faces;
-    j["edges"] = r.n_edges;
-    j["connected_components"] = r.n_components;
-    j["boundary_loops"] = r.n_boundary_loops;
-    j["euler_characteristic"] = r.euler_characteristic;
-    j["genus"] = r.genus ? nlohmann::json(*r.genus) : nlohmann::json(nullptr);
-    j["mappable"] = r.mappable();
-    j["problems"] = nlohmann::json::array();
-    for (const auto& p : r.problems)
-      j["problems"].push_back({{"kind", p.kind}, {"count", p.count}, {"examples", p.examples}});
-    std::cout << j.dump(2) << '\n';
-  } else {
-    std::cout << "mesh:                 " << path << '\n'
-              << "vertices:             " << r.n_vertices << '\n'
-              << "faces:                " << r.n_faces << '\n'
-              << "edges:                " << r.n_edges << '\n'
-              << "connected components: " << r.n_components << '\n'
-              << "boundary loops:       " << r.n_boundary_loops << '\n'
-              << "Euler characteristic: " << r.euler_characteristic << '\n'
-              << "genus:                " << (r.genus ? std::to_string(*r.genus) : "undefined (not a manifold)")
-              << '\n';
-    if (r.mappable()) {
-      std::cout << "problems:             none\nmappable:             yes\n";
-    } else {
-      std::cout << "problems:\n";
-      for (const auto& p : r.problems) {
-        std::cout << "  " << p.kind << " (" << p.count << "):\n";
-        for (const auto& e : p.examples) std::cout << "    " << e << '\n';
-        if (p.count > static_cast<int>(p.examples.size())) {
-          std::cout << "    ... " << p.count - static_cast<int>(p.examples.size()) << " more\n";
-        }
-      }
-      std::cout << "mappable:             no\n";
-    }
-  }
-  if (!r.mappable()) std::cerr << "liftmap: " << path << ": cannot be mapped: " << r.summary() << '\n';
-  return r.mappable();
+/// The report of one mesh as JSON.
+nlohmann::json mesh_json(const std::string& path, const liftmap::MeshReport& r) {
+  nlohmann::json j;
+  j["mesh"] = path;
+  j["vertices"] = r.n_vertices;
+  j["faces"] = r.n_faces;
+  j["edges"] = r.n_edges;
+  j["connected_components"] = r.n_components;
+  j["boundary_edges"] = r.n_boundary_edges;
+  j["boundary_loops"] = r.n_boundary_loops ? nlohmann::json(*r.n_boundary_loops) : nlohmann::json(nullptr);
+  j["euler_characteristic"] = r.euler_characteristic;
+  j["genus"] = r.genus ? nlohmann::json(*r.genus) : nlohmann::json(nullptr);
+  j["mappable"] = r.mappable();
+  j["problems"] = nlohmann::json::array();
+  for (const auto& p : r.problems)
+    j["problems"].push_back({{"kind", p.kind}, {"count", p.count}, {"examples", p.examples}});
+  return j;
 }
 
+/// Prints the report of one mesh as text.
+void print_mesh_report(const std::string& path, const liftmap::MeshReport& r) {
+  std::cout << "mesh:                 " << path << '\n'
+            << "vertices:             " << r.n_vertices << '\n'
+            << "faces:                " << r.n_faces << '\n'
+            << "edges:                " << r.n_edges << '\n'
+            << "connected components: " << r.n_components << '\n'
+            << "boundary edges:       " << r.n_boundary_edges << '\n'
+            << "boundary loops:       "
+            << (r.n_boundary_loops ? std::to_string(*r.n_boundary_loops) : "undefined (not a manifold)") << '\n'
+            << "Euler characteristic: " << r.euler_characteristic << '\n'
+            << "genus:                " << (r.genus ? std::to_string(*r.genus) : "undefined (not a manifold)") << '\n';
+  if (r.mappable()) {
+    std::cout << "problems:             none\nmappable:             yes\n";
+    return;
+  }
+  std::cout << "problems:\n";
+  for (const auto& p : r.problems) {
+    std::cout << "  " << p.kind << " (" << p.count << "):\n";
+    for (const auto& e : p.examples) std::cout << "    " << e << '\n';
+    if (p.count > static_cast<int>(p.examples.size())) {
+      std::cout << "    ... " << p.count - static_cast<int>(p.examples.size()) << " more\n";
+    }
+  }
+  std::cout << "mappable:             no\n";
+}
+
+/// `liftmap check`: the report of every mesh, then the landmark file's verdict; with --json one document
+/// {"meshes": [...], "landmarks": {...} (with -l), "mappable": ...}.
 int run_check(const std::vector<std::string>& paths, const std::string& landmarks_path, bool as_json) {
   std::vector<liftmap::TriangleMesh> meshes;
   meshes.reserve(paths.size());
   for (const auto& p : paths) meshes.push_back(liftmap::read_mesh(p));
-  bool ok = true;
-  for (size_t i = 0; i < paths.size(); ++i) ok = report_mesh(paths[i], meshes[i], as_json) && ok;
-  if (!landmarks_path.empty()) {
-    const liftmap::Landmarks lm = liftmap::read_landmarks(landmarks_path, static_cast<int>(meshes[0].V.rows()),
-                                                          static_cast<int>(meshes[1].V.rows()));
-    if (!as_json) std::cout << "landmarks:            " << lm.a.size() << " pairs in " << landmarks_path << '\n';
+  nlohmann::json doc;
+  doc["meshes"] = nlohmann::json::array();
+  int code = liftmap::kExitOk;
+  std::vector<std::string> errors;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const liftmap::MeshReport r = liftmap::check_mesh(meshes[i].V, meshes[i].F);
+    if (as_json) {
+      doc["meshes"].push_back(mesh_json(paths[i], r));
+    } else {
+      print_mesh_report(paths[i], r);
+    }
+    if (!r.mappable()) {
+      errors.push_back(paths[i] + ": cannot be mapped: " + r.summary());
+      code = liftmap::kExitInvalidInput;
+    }
   }
-  return ok ? liftmap::kExitOk : liftmap::kExitInvalidInput;
+  if (!landmarks_path.empty()) {
+    nlohmann::json lm = {{"file", landmarks_path}};
+    try {
+      const liftmap::Landmarks landmarks = liftmap::read_landmarks(landmarks_path, static_cast<int>(meshes[0].V.rows()),
+                                                                   static_cast<int>(meshes[1].V.rows()));
+      lm["pairs"] = landmarks.a.size();
+      lm["valid"] = true;
+      lm["error"] = nullptr;
+      if (!as_json)
+        std::cout << "landmarks:            " << landmarks.a.size() << " pairs in " << landmarks_path << '\n';
+    } catch (const liftmap::IoError& e) {
+      lm["valid"] = false;
+      lm["error"] = e.what();
+      errors.emplace_back(e.what());
+      if (code == liftmap::kExitOk) code = liftmap::kExitIo;
+    } catch (const liftmap::InvalidInputError& e) {
+      lm["valid"] = false;
+      lm["error"] = e.what();
+      errors.emplace_back(e.what());
+      if (code == liftmap::kExitOk) code = liftmap::kExitInvalidInput;
+    }
+    if (!as_json && !lm["valid"].get<bool>())
+      std::cout << "landmarks:            invalid: " << lm["error"].get<std::string>() << '\n';
+    doc["landmarks"] = lm;
+  }
+  doc["mappable"] = code == liftmap::kExitOk;
+  if (as_json) std::cout << doc.dump(2) << '\n';
+  for (const std::string& e : errors) std::cerr << "liftmap: " << e << '\n';
+  return code;
+}
+
+/// The most threads `--threads` accepts: 4 per hardware thread (more only cost memory, and thread creation
+/// fails in OpenMP long before an int overflows).
+int max_threads() { return 4 * static_cast<int>(std::max(1U, std::thread::hardware_concurrency())); }
+
+/// The most outer iterations `--max-iterations` accepts (a run stops at the tolerance long before).
+constexpr int kMaxOuterIterations = 10000;
+
+/// A finite number > 0 (CLI::PositiveNumber lets nan and inf through).
+const CLI::Validator kFinitePositive(
+    [](std::string& s) {
+      double x = 0;
+      if (!CLI::detail::lexical_cast(s, x) || !std::isfinite(x) || x <= 0) {
+        return "value " + s + " is not a finite number > 0";
+      }
+      return std::string();
+    },
+    "FINITE > 0");
+
+/// Usage errors in the form of every other message: one line starting with `liftmap:`.
+std::string usage_message(const CLI::App* app, const CLI::Error& e) {
+  std::string command = app->get_name();
+  for (const CLI::App* p = app->get_parent(); p != nullptr; p = p->get_parent()) command.insert(0, p->get_name() + " ");
+  return "liftmap: " + std::string(e.what()) + " (see '" + command + " --help')\n";
 }
 
 /// Inputs and options shared by `map` and `cut`.
 struct PairJob {
   std::string path_a, path_b, landmarks_path, out_dir = "out";
   std::string p = "2", h = "eq3", tree = "mst", solver = "auto";
-  bool no_normalize = false, quiet = false;
+  bool no_normalize = false, quiet = false, fix_orientation = false;
   double tolerance = 1e-3;
   int max_iterations = 10, threads = 0, samples = 2;
 };
@@ -109,25 +177,55 @@ void add_pair_options(CLI::App* cmd, PairJob& job) {
       ->check(CLI::IsMember({"mst", "path"}))
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
-  cmd->add_option("--threads", job.threads, "Threads for the per-face work (0: all cores)")->capture_default_str();
+  cmd->add_flag("--fix-orientation", job.fix_orientation,
+                "Reverse the faces of an inside-out mesh (negative signed volume) with a warning, instead of "
+                "rejecting it");
+  cmd->add_option("--threads", job.threads,
+                  "Threads for the per-face work, 1 to 4 per hardware thread (default: all hardware threads)")
+      ->check(CLI::Range(1, max_threads()));
 }
 
 struct Inputs {
   liftmap::TriangleMesh a, b;
   liftmap::Landmarks landmarks;
+  bool flipped_a = false, flipped_b = false;  ///< faces reversed by --fix-orientation
 };
 
+/// --fix-orientation: reverses the faces of a mesh whose signed volume is negative, with a warning. Whether
+/// the mesh is mappable otherwise is left to the one validation that follows.
+bool fix_orientation(liftmap::TriangleMesh& mesh, const std::string& path) {
+  if (mesh.F.rows() == 0 || mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows() || !mesh.V.allFinite()) {
+    return false;
+  }
+  const double volume = liftmap::signed_volume(mesh.V, mesh.F);
+  if (!(volume < 0)) return false;
+  mesh.F.col(1).swap(mesh.F.col(2));
+  std::cerr << "liftmap: warning: " << path << " is inside-out (signed volume " << liftmap::figure(volume)
+            << "): its faces are reversed (--fix-orientation); map files into it keep the vertex order of its file\n";
+  return true;
+}
+
+/// Barycentric coordinates of points of a mesh whose faces fix_orientation reversed, in the order of the faces'
+/// vertices in its file.
+void to_file_order(std::vector<liftmap::SurfacePoint>& points) {
+  for (liftmap::SurfacePoint& p : points) std::swap(p.bary[1], p.bary[2]);
+}
+
+/// Reads the inputs of `map` or `cut` and prepares the output folder for the files of `map` (which include
+/// those of `cut`: a `cut` into a map's folder removes the map's files too, so the folder never mixes two runs).
+/// The meshes are validated later, once, by map_meshes or run_cut.
 Inputs read_inputs(const PairJob& job) {
   Inputs in;
   in.a = liftmap::read_mesh(job.path_a);
   in.b = liftmap::read_mesh(job.path_b);
-  liftmap::require_mappable(liftmap::check_mesh(in.a.V, in.a.F), job.path_a);
-  liftmap::require_mappable(liftmap::check_mesh(in.b.V, in.b.F), job.path_b);
   in.landmarks =
       liftmap::read_landmarks(job.landmarks_path, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
-  std::error_code ec;
-  std::filesystem::create_directories(job.out_dir, ec);
-  if (ec) throw liftmap::IoError(job.out_dir + ": cannot create output folder: " + ec.message());
+  if (job.fix_orientation) {
+    in.flipped_a = fix_orientation(in.a, job.path_a);
+    in.flipped_b = fix_orientation(in.b, job.path_b);
+  }
+  liftmap::prepare_output_folder(job.out_dir, liftmap::map_output_names(),
+                                 {job.path_a, job.path_b, job.landmarks_path});
   return in;
 }
 
@@ -143,6 +241,8 @@ liftmap::MapOptions map_options(const PairJob& job) {
   o.flatten.relative_tolerance = job.tolerance;
   o.flatten.max_iterations = job.max_iterations;
   o.distortion_samples_per_edge = job.samples;
+  o.name_a = job.path_a;
+  o.name_b = job.path_b;
   if (!job.quiet) {
     const auto t0 = std::chrono::steady_clock::now();
     o.progress = [t0](const std::string& stage, const std::string& message) {
@@ -162,29 +262,42 @@ int run_map(const PairJob& job) {
   const liftmap::MapOptions options = map_options(job);
   const liftmap::MapResult map =
       liftmap::map_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options);
-  liftmap::write_vertex_map(out_path(job, "A_to_B.txt"), map.a_to_b,
+  // The map files refer to the faces of the input files, in their files' vertex order.
+  std::vector<liftmap::SurfacePoint> a_to_b = map.a_to_b, b_to_a = map.b_to_a;
+  liftmap::TriangleMesh file_a = in.a, file_b = in.b;
+  if (in.flipped_b) {
+    to_file_order(a_to_b);
+    file_b.F.col(1).swap(file_b.F.col(2));
+  }
+  if (in.flipped_a) {
+    to_file_order(b_to_a);
+    file_a.F.col(1).swap(file_a.F.col(2));
+  }
+  liftmap::write_vertex_map(out_path(job, "A_to_B.txt"), a_to_b,
                             "liftmap map of A = " + job.path_a + " onto B = " + job.path_b);
-  liftmap::write_vertex_map(out_path(job, "B_to_A.txt"), map.b_to_a,
+  liftmap::write_vertex_map(out_path(job, "B_to_A.txt"), b_to_a,
                             "liftmap map of B = " + job.path_b + " onto A = " + job.path_a);
-  liftmap::write_barycentric_matrix(out_path(job, "A_to_B.ijv"), map.a_to_b, in.b.F);
-  liftmap::write_barycentric_matrix(out_path(job, "B_to_A.ijv"), map.b_to_a, in.a.F);
+  liftmap::write_barycentric_matrix(out_path(job, "A_to_B.ijv"), a_to_b, file_b.F);
+  liftmap::write_barycentric_matrix(out_path(job, "B_to_A.ijv"), b_to_a, file_a.F);
   liftmap::write_cut(job.out_dir, map.cut, map.flattening.Phi, map.flattening.Psi);
   liftmap::write_vertex_map(out_path(job, "cut_A_to_B.txt"), map.cut_a_to_b,
                             "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
   liftmap::write_vertex_map(out_path(job, "cut_B_to_A.txt"), map.cut_b_to_a,
                             "per vt of cut_B.obj: face of cut_A.obj and barycentric coordinates");
-  const nlohmann::json report = liftmap::map_report(map, job.path_a, in.a, job.path_b, in.b, in.landmarks, options);
-  {
-    std::ofstream out(out_path(job, "report.json"));
-    out << report.dump(2) << '\n';
-    if (!out) throw liftmap::IoError(out_path(job, "report.json") + ": write error");
-  }
   if (options.progress) options.progress("render", "render.png, distortion.png, textured meshes");
   liftmap::write_map_render(out_path(job, "render.png"), map, in.a, in.b, in.landmarks.a, in.landmarks.b,
                             "A: " + std::filesystem::path(job.path_a).filename().string(),
                             "B: " + std::filesystem::path(job.path_b).filename().string());
   liftmap::write_distortion_histogram(out_path(job, "distortion.png"), map);
   liftmap::write_textured_meshes(job.out_dir, map);
+  // Last: a folder with a report.json holds every file of this run.
+  liftmap::OutputFile report(out_path(job, "report.json"));
+  nlohmann::json report_json = liftmap::map_report(map, job.path_a, in.a, job.path_b, in.b, in.landmarks, options);
+  report_json["input"]["A"]["faces_reversed"] = in.flipped_a;
+  report_json["input"]["B"]["faces_reversed"] = in.flipped_b;
+  const std::string text = report_json.dump(2) + '\n';
+  std::fputs(text.c_str(), report.get());
+  report.close();
   if (!map.verification.passed) {
     std::cerr << "liftmap: verification failed (outputs kept in " << job.out_dir
               << ", see report.json): " << map.verification.failures.front() << '\n';
@@ -199,6 +312,8 @@ int run_map(const PairJob& job) {
 
 int run_cut(const PairJob& job) {
   const Inputs in = read_inputs(job);
+  liftmap::require_mappable(liftmap::check_mesh(in.a.V, in.a.F), job.path_a);
+  liftmap::require_mappable(liftmap::check_mesh(in.b.V, in.b.F), job.path_b);
   liftmap::MapOptions options = map_options(job);
   if (options.progress) options.progress("cut", "cutting both meshes to disks");
   const liftmap::CutResult cut =
@@ -227,6 +342,7 @@ struct TransferJob {
 };
 
 int run_transfer_attributes(const TransferJob& job) {
+  liftmap::refuse_overwriting_inputs(job.out_path, {job.map_path, job.onto_path, job.data_path});
   const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
   const auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
   const Eigen::MatrixXd data = liftmap::read_attributes(job.data_path);
@@ -239,6 +355,7 @@ int run_transfer_attributes(const TransferJob& job) {
 }
 
 int run_transfer_mesh(const TransferJob& job) {
+  liftmap::refuse_overwriting_inputs(job.out_path, {job.map_path, job.onto_path, job.connectivity_path});
   const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
   const liftmap::TriangleMesh source = liftmap::read_mesh(job.connectivity_path);
   const auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
@@ -253,8 +370,14 @@ int run_transfer_mesh(const TransferJob& job) {
 int run_eval(const std::string& map_path, const std::string& truth_path, const std::string& target_path) {
   const liftmap::TriangleMesh target = liftmap::read_mesh(target_path);
   const auto n_faces = static_cast<int>(target.F.rows());
-  const liftmap::MapDifference d = liftmap::compare_maps(
-      target.V, target.F, liftmap::read_vertex_map(map_path, n_faces), liftmap::read_vertex_map(truth_path, n_faces));
+  const auto map = liftmap::read_vertex_map(map_path, n_faces);
+  const auto truth = liftmap::read_vertex_map(truth_path, n_faces);
+  if (map.size() != truth.size()) {
+    throw liftmap::InvalidInputError(map_path + ": " + std::to_string(map.size()) + " map lines, but " + truth_path +
+                                     " has " + std::to_string(truth.size()) +
+                                     ": the maps do not start from the same mesh");
+  }
+  const liftmap::MapDifference d = liftmap::compare_maps(target.V, target.F, map, truth);
   std::printf("mean error: %.6g\nmax error:  %.6g (source vertex %d)\n(Euclidean distance on %s / sqrt(area))\n",
               d.mean, d.max, d.worst_vertex, target_path.c_str());
   return liftmap::kExitOk;
@@ -264,6 +387,8 @@ int run(int argc, char** argv) {
   CLI::App app{
       "liftmap: continuous, bijective, low-distortion maps between two genus-0 triangle meshes\n"
       "(Aigerman, Poranne, Lipman: Lifted Bijections for Low Distortion Surface Mappings, 2014)"};
+  app.name("liftmap");
+  app.failure_message(usage_message);  // before the subcommands, which inherit it
   app.require_subcommand(1);
   app.set_version_flag("--version", "liftmap 0.1.0");
 
@@ -294,10 +419,10 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "barrier", "primal-dual"}))
       ->capture_default_str();
   map->add_option("--tolerance", map_job.tolerance, "Stop when the energy improves by less than this (relative)")
-      ->check(CLI::PositiveNumber)
+      ->check(kFinitePositive)
       ->capture_default_str();
   map->add_option("--max-iterations", map_job.max_iterations, "Outer iterations of the flattening")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Range(0, kMaxOuterIterations))
       ->capture_default_str();
   map->add_option("--samples", map_job.samples, "Distortion of f, g: n^2 samples per face")
       ->check(CLI::Range(1, 10))
@@ -363,6 +488,9 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   try {
     return run(argc, argv);
+  } catch (const liftmap::UsageError& e) {
+    std::cerr << "liftmap: " << e.what() << '\n';
+    return liftmap::kExitUsage;
   } catch (const liftmap::IoError& e) {
     std::cerr << "liftmap: " << e.what() << '\n';
     return liftmap::kExitIo;

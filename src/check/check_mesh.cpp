@@ -56,6 +56,46 @@ struct Corner {
   int lo, hi, face, k;
 };
 
+/// Coordinates the pipeline cannot compute with (CoordinateLimits): too large, too small, too far from the
+/// origin for the mesh's size, or edges too short for it.
+void check_coordinate_ranges(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<char>& usable,
+                             ProblemList& problems) {
+  if (V.rows() == 0 || !V.allFinite()) return;  // non-finite coordinates are reported on their own
+  Eigen::Index v_max = 0, c_max = 0;
+  const double magnitude = V.cwiseAbs().maxCoeff(&v_max, &c_max);
+  const double diagonal = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  if (magnitude > CoordinateLimits::kMaxMagnitude) {
+    problems.add("coordinate out of range", "vertex " + std::to_string(v_max) + " has coordinate " +
+                                                figure(V(v_max, c_max)) + ", beyond +-" +
+                                                figure(CoordinateLimits::kMaxMagnitude) + ": scale the mesh down");
+    return;
+  }
+  if (diagonal < CoordinateLimits::kMinDiagonal) {
+    problems.add("coordinate out of range", "the bounding box diagonal " + figure(diagonal) + " is below " +
+                                                figure(CoordinateLimits::kMinDiagonal) + ": scale the mesh up");
+    return;
+  }
+  if (magnitude > CoordinateLimits::kMaxOffset * diagonal) {
+    problems.add("mesh far from the origin",
+                 "vertex " + std::to_string(v_max) + " has coordinate " + figure(V(v_max, c_max)) + ", " +
+                     figure(magnitude / diagonal) + " times the bounding box diagonal " + figure(diagonal) +
+                     " (at most " + figure(CoordinateLimits::kMaxOffset) +
+                     "): too few digits are left for the shape; translate the mesh towards the origin");
+  }
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    if (!usable[static_cast<size_t>(f)]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      const double length = (V.row(a) - V.row(b)).norm();
+      if (length > 0 && length < CoordinateLimits::kMinEdgeRatio * diagonal && a < b) {
+        problems.add("edge too short for the mesh's extent",
+                     "edge " + edge_name(a, b) + " has length " + figure(length) + ", " + figure(length / diagonal) +
+                         " of the bounding box diagonal (at least " + figure(CoordinateLimits::kMinEdgeRatio) + ")");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::string MeshReport::summary() const {
@@ -152,6 +192,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     components.unite(c0.lo, c0.hi);
     const auto n = static_cast<int>(j - i);
     if (n == 1) {
+      ++r.n_boundary_edges;
       problems.add("boundary edge", "edge " + edge_name(c0.lo, c0.hi) + " has only one face (the mesh is open)");
     } else if (n > 2) {
       manifold = false;
@@ -232,7 +273,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
       const Mesh mesh(F, nv);
       r.n_boundary_loops = static_cast<int>(mesh.boundary_loops().size());
       // chi = sum over components of (2 - 2 g_i - b_i)
-      r.genus = (2 * r.n_components - r.n_boundary_loops - r.euler_characteristic) / 2;
+      r.genus = (2 * r.n_components - *r.n_boundary_loops - r.euler_characteristic) / 2;
     } catch (const InvalidInputError& e) {
       problems.add("non-manifold configuration", e.what());
     }
@@ -243,15 +284,37 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     problems.add("disconnected mesh", std::to_string(r.n_components) +
                                           " connected components: only a single connected surface can be mapped");
   }
-  if (r.n_boundary_loops > 0) {
+  if (r.n_boundary_loops.value_or(0) > 0) {
     problems.add("open mesh",
-                 std::to_string(r.n_boundary_loops) + " boundary loop(s): only closed surfaces can be mapped");
+                 std::to_string(*r.n_boundary_loops) + " boundary loop(s): only closed surfaces can be mapped");
   }
   if (r.genus && *r.genus != 0) {
     problems.add("wrong genus", "genus " + std::to_string(*r.genus) + ": only genus 0 is supported");
   }
+  // The orientation of the whole surface is only defined once it is closed and consistently oriented.
+  if (r.genus && r.n_boundary_loops == 0 && r.n_components == 1 && V.allFinite()) {
+    const double volume = signed_volume(V, F);
+    if (volume < 0) {
+      problems.add("inside-out mesh", "the faces are oriented inward (signed volume " + figure(volume) +
+                                          " < 0): reverse the vertex order of every face");
+    }
+  }
+  check_coordinate_ranges(V, F, usable, problems);
   r.problems = problems.take();
   return r;
+}
+
+double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  // About the bounding box centre, so that a translation does not cost digits.
+  const Eigen::RowVector3d centre = 0.5 * (V.colwise().maxCoeff() + V.colwise().minCoeff());
+  double sum = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d p = (V.row(F(f, 0)) - centre).transpose();
+    const Eigen::Vector3d q = (V.row(F(f, 1)) - centre).transpose();
+    const Eigen::Vector3d w = (V.row(F(f, 2)) - centre).transpose();
+    sum += p.dot(q.cross(w));
+  }
+  return sum / 6;
 }
 
 void require_mappable(const MeshReport& report, const std::string& path) {

@@ -20,23 +20,41 @@ struct MeshReport {
   int n_vertices = 0;
   int n_faces = 0;
   int n_edges = 0;
-  int n_components = 0;               ///< connected components of the faces
-  int n_boundary_loops = 0;           ///< only when the mesh is manifold and oriented, else 0
-  int euler_characteristic = 0;       ///< V - E + F, unreferenced vertices not counted
-  std::optional<int> genus;           ///< only for a manifold, oriented mesh
-  std::vector<MeshProblem> problems;  ///< everything that prevents mapping; empty means mappable
+  int n_components = 0;                 ///< connected components of the faces
+  int n_boundary_edges = 0;             ///< edges with only one face
+  std::optional<int> n_boundary_loops;  ///< only for a manifold, oriented mesh (loops are undefined otherwise)
+  int euler_characteristic = 0;         ///< V - E + F, unreferenced vertices not counted
+  std::optional<int> genus;             ///< only for a manifold, oriented mesh
+  std::vector<MeshProblem> problems;    ///< everything that prevents mapping; empty means mappable
 
-  /// True if liftmap can map this mesh: closed, connected, manifold, consistently oriented, genus 0, finite
-  /// coordinates, no degenerate, duplicate or unreferenced elements.
+  /// True if liftmap can map this mesh: closed, connected, manifold, consistently oriented with outward normals,
+  /// genus 0, finite coordinates within CoordinateLimits, no degenerate, duplicate or unreferenced elements.
   [[nodiscard]] bool mappable() const { return problems.empty(); }
   /// One line summarising why the mesh cannot be mapped (first examples of every problem); empty if mappable.
   [[nodiscard]] std::string summary() const;
 };
 
-/// Checks a triangle mesh.
+/// Coordinate ranges the mapping pipeline computes with; check_mesh reports a mesh outside them (README,
+/// "Command line"). They keep squared lengths and areas far from overflow and underflow and leave enough digits
+/// for the shape after the pipeline subtracts nearby positions.
+struct CoordinateLimits {
+  static constexpr double kMaxMagnitude = 1e30;  ///< every |coordinate| at most this
+  static constexpr double kMinDiagonal = 1e-30;  ///< the bounding box diagonal at least this
+  static constexpr double kMaxOffset = 1e4;      ///< max |coordinate| at most this times the diagonal
+  static constexpr double kMinEdgeRatio = 1e-8;  ///< every edge at least this times the diagonal
+};
+
+/// Checks a triangle mesh: everything that prevents mapping it, including an inside-out orientation (a closed
+/// mesh whose signed volume is negative) and coordinates outside CoordinateLimits. check_mesh is the one
+/// validation of `liftmap check` and of map_meshes: a mesh it finds mappable is one the pipeline accepts.
 /// \param V #V by 3 positions
 /// \param F #F by 3 vertex indices (out-of-range indices are reported, not assumed away)
 MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+/// The volume a closed, consistently oriented mesh encloses, positive when its faces are counter-clockwise seen
+/// from outside (normals outward), negative for an inside-out mesh. Meaningless for an open mesh.
+/// \param V #V by 3 positions; \param F #F by 3 faces, indices in range
+double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
 /// Throws InvalidInputError("<path>: <summary>") unless the mesh is mappable.
 void require_mappable(const MeshReport& report, const std::string& path);

@@ -1,13 +1,22 @@
 #pragma once
 /// Typed exceptions of liftmap. Each maps to one documented exit code of the CLI (see README, "Exit codes").
 
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace liftmap {
 
-/// A file cannot be opened, read or parsed (exit code 3). The message names the file and, where known, the
-/// line or element.
+/// The command line asks for something that cannot be done as asked, e.g. an output path that is one of the
+/// inputs (exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A file cannot be opened, read or parsed, or an output cannot be written (exit code 3). The message names the file
+/// and, where known, the line or element.
 class IoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -35,6 +44,14 @@ inline std::string edge_name(int a, int b) {
   s += std::to_string(b);
   s += ')';
   return s;
+}
+
+/// How messages print a measured figure: `digits` significant digits, with an exponent when that is shorter
+/// ("6e-09", "1.23e+12", "0.5"; never "0.000000").
+inline std::string figure(double x, int digits = 3) {
+  std::ostringstream s;
+  s << std::setprecision(digits) << x;
+  return s.str();
 }
 
 /// Exit codes of the `liftmap` command line tool, documented in the README.

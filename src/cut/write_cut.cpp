@@ -40,4 +40,8 @@ void write_cut(const std::string& dir, const CutResult& result, const Eigen::Mat
   f.close();
 }
 
+std::vector<std::string> cut_output_names() {
+  return {"cut_A.obj", "cut_B.obj", "cut_graph_A.obj", "cut_graph_B.obj", "boundary_map.txt"};
+}
+
 }  // namespace liftmap

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "cut/cut_meshes.h"
 
@@ -17,5 +18,8 @@ namespace liftmap {
 /// \throw IoError if a file cannot be written.
 void write_cut(const std::string& dir, const CutResult& result, const Eigen::MatrixXd& UV_a = {},
                const Eigen::MatrixXd& UV_b = {});
+
+/// The names of the files write_cut writes.
+std::vector<std::string> cut_output_names();
 
 }  // namespace liftmap

@@ -1,12 +1,14 @@
 #include "io/landmarks.h"
 
 #include <charconv>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/output_file.h"
 
 namespace liftmap {
 
@@ -40,12 +42,17 @@ Landmarks read_landmarks(const std::string& path, int n_vertices_a, int n_vertic
   if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": is a directory, not a landmark file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open landmark file");
+  return read_landmarks(in, path, n_vertices_a, n_vertices_b);
+}
+
+Landmarks read_landmarks(std::istream& in, const std::string& path, int n_vertices_a, int n_vertices_b) {
   Landmarks lm;
   std::map<int, int> line_of_a, line_of_b;
   std::string text;
   int line_no = 0;
   while (std::getline(in, text)) {
     ++line_no;
+    if (line_no == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // a UTF-8 byte-order mark
     for (char c : text) {
       const auto u = static_cast<unsigned char>(c);
       if (u == 0 || (u < 32 && c != '\t' && c != '\r')) fail(path, line_no, "not a text line (binary data?)");
@@ -82,11 +89,11 @@ Landmarks read_landmarks(const std::string& path, int n_vertices_a, int n_vertic
 }
 
 void write_landmarks(const std::string& path, const Landmarks& landmarks) {
-  std::ofstream out(path);
-  if (!out) throw IoError(path + ": cannot open for writing");
-  out << "# liftmap landmarks: vertex of A, vertex of B (0-based)\n";
-  for (size_t i = 0; i < landmarks.a.size(); ++i) out << landmarks.a[i].idx << ' ' << landmarks.b[i].idx << '\n';
-  if (!out) throw IoError(path + ": write error");
+  OutputFile f(path);
+  std::fprintf(f.get(), "# liftmap landmarks: vertex of A, vertex of B (0-based)\n");
+  for (size_t i = 0; i < landmarks.a.size(); ++i)
+    std::fprintf(f.get(), "%d %d\n", landmarks.a[i].idx, landmarks.b[i].idx);
+  f.close();
 }
 
 }  // namespace liftmap

@@ -7,6 +7,7 @@
 /// are rejected for now with a message saying so; a future version accepts them without changing the meaning of
 /// existing files.
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,11 @@ struct Landmarks {
 /// Reads and validates a landmark file against meshes with `n_vertices_a` and `n_vertices_b` vertices.
 /// \throw IoError if the file cannot be read; InvalidInputError naming the file and line for a malformed line,
 ///        an index out of range, a vertex used twice on one side, or fewer than 2 pairs.
+/// A UTF-8 byte-order mark before the first line is skipped.
 Landmarks read_landmarks(const std::string& path, int n_vertices_a, int n_vertices_b);
+
+/// read_landmarks from a stream; `name` stands for the file in messages.
+Landmarks read_landmarks(std::istream& in, const std::string& name, int n_vertices_a, int n_vertices_b);
 
 /// Writes landmarks in the format above.
 /// \throw IoError if the file cannot be written.

@@ -203,8 +203,8 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   auto progress = [&](const std::string& stage, const std::string& message) {
     if (options.progress) options.progress(stage, message);
   };
-  require_mappable(check_mesh(VA, FA), "mesh A");
-  require_mappable(check_mesh(VB, FB), "mesh B");
+  require_mappable(check_mesh(VA, FA), options.name_a);
+  require_mappable(check_mesh(VB, FB), options.name_b);
   if (landmarks_a.size() != landmarks_b.size() || landmarks_a.size() < 2) {
     throw InvalidInputError("map: need at least 2 corresponding landmarks on each mesh");
   }
@@ -344,12 +344,12 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
     if (!ok) ver.failures.push_back(what);
   };
   require(ver.min_orientation > 0,
-          "a flattened face is flipped or degenerate (min orientation " + std::to_string(ver.min_orientation) + ")");
+          "a flattened face is flipped or degenerate (min orientation " + figure(ver.min_orientation) + ")");
   require(ver.max_boundary_angle_sum < 2 * M_PI,
-          "a boundary angle sum reaches 2 pi (" + std::to_string(ver.max_boundary_angle_sum) + ")");
-  require(ver.lifting_residual < 1e-9, "lifting residual " + std::to_string(ver.lifting_residual) + " >= 1e-9");
-  require(ver.round_trip_error < 1e-9, "round trip error " + std::to_string(ver.round_trip_error) + " >= 1e-9");
-  require(ver.landmark_error < 1e-12, "landmark error " + std::to_string(ver.landmark_error) + " >= 1e-12");
+          "a boundary angle sum reaches 2 pi (" + figure(ver.max_boundary_angle_sum) + ")");
+  require(ver.lifting_residual < 1e-9, "lifting residual " + figure(ver.lifting_residual) + " >= 1e-9");
+  require(ver.round_trip_error < 1e-9, "round trip error " + figure(ver.round_trip_error) + " >= 1e-9");
+  require(ver.landmark_error < 1e-12, "landmark error " + figure(ver.landmark_error) + " >= 1e-12");
   ver.passed = ver.failures.empty();
 
   // Distortion, on both meshes scaled to the same area as the flattening does.

@@ -25,6 +25,8 @@ struct MapOptions {
   /// Distortion of the maps f and g is measured by dense sampling: each face is split into n^2 sub-triangles
   /// and the map is evaluated at their centroids, each weighted by its area.
   int distortion_samples_per_edge = 2;
+  /// How messages name the two input meshes (the CLI passes their file names).
+  std::string name_a = "mesh A", name_b = "mesh B";
   /// Called with (stage, message) as the pipeline advances; empty: silent.
   std::function<void(const std::string&, const std::string&)> progress;
 };
@@ -87,7 +89,9 @@ struct MapResult {
 /// Computes the lifted bijection between two closed genus-0 meshes with corresponding landmarks.
 /// \param VA, VB #V by 3 positions; FA, FB #F by 3 faces
 /// \param landmarks_a, landmarks_b k >= 2 corresponding vertices
-/// \throw InvalidInputError if a mesh cannot be mapped (see check_mesh) or the landmarks are invalid;
+/// Each mesh is validated once, by check_mesh (the validation of `liftmap check`), before any computation.
+/// \throw InvalidInputError naming MapOptions::name_a or name_b if a mesh cannot be mapped (see check_mesh), or
+///        if the landmarks are invalid;
 ///        PipelineError if a stage fails. A map whose verification fails is returned with
 ///        `verification.passed == false`: the caller decides (the CLI writes it and exits with an error).
 MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,

@@ -36,8 +36,12 @@ Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& 
 }
 
 Eigen::MatrixXd read_attributes(const std::string& path, std::vector<int>* line_of_row) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open file");
+  return read_attributes(in, path, line_of_row);
+}
+
+Eigen::MatrixXd read_attributes(std::istream& in, const std::string& path, std::vector<int>* line_of_row) {
   std::vector<std::vector<double>> rows;
   std::string line;
   int line_no = 0;
@@ -63,6 +67,7 @@ Eigen::MatrixXd read_attributes(const std::string& path, std::vector<int>* line_
     rows.push_back(std::move(row));
     if (line_of_row != nullptr) line_of_row->push_back(line_no);
   }
+  if (in.bad()) throw IoError(path + ": read error");
   if (rows.empty()) throw IoError(path + ": no rows of numbers");
   Eigen::MatrixXd X(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
   for (size_t i = 0; i < rows.size(); ++i) {

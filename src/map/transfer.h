@@ -2,6 +2,7 @@
 /// Using a map file: carrying data from one mesh to the other and comparing maps.
 
 #include <Eigen/Core>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& 
 /// \param line if not null, receives the file line of every row (for messages)
 /// \throw IoError naming the file and line for a malformed row or rows of different lengths, or no rows
 Eigen::MatrixXd read_attributes(const std::string& path, std::vector<int>* line = nullptr);
+
+/// read_attributes from a stream; `name` stands for the file in messages.
+Eigen::MatrixXd read_attributes(std::istream& in, const std::string& name, std::vector<int>* line = nullptr);
 
 /// Writes per-vertex attributes in the format of read_attributes (17 significant digits).
 void write_attributes(const std::string& path, const Eigen::MatrixXd& X);

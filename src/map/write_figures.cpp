@@ -1,10 +1,11 @@
 #include "map/write_figures.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "core/errors.h"
+#include "io/output_file.h"
 #include "io/write_mesh.h"
 #include "render/figure.h"
 #include "render/histogram.h"
@@ -43,9 +44,9 @@ Eigen::MatrixXd landmark_positions(const Eigen::MatrixXd& V, const std::vector<V
 }
 
 void write_mtl(const std::string& path, const std::string& texture) {
-  std::ofstream out(path);
-  out << "newmtl material\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd " << texture << '\n';
-  if (!out) throw IoError(path + ": write error");
+  OutputFile f(path);
+  std::fprintf(f.get(), "newmtl material\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd %s\n", texture.c_str());
+  f.close();
 }
 
 }  // namespace

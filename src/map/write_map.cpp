@@ -2,15 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "core/errors.h"
+#include "cut/write_cut.h"
 #include "io/output_file.h"
 #include "io/write_mesh.h"
-#include "map/transfer.h"
 
 namespace liftmap {
 
@@ -21,37 +18,6 @@ nlohmann::json stats_json(const DistortionStats& s) {
 }
 
 }  // namespace
-
-void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& images, const std::string& header) {
-  OutputFile f(path);
-  std::istringstream lines(header);
-  for (std::string line; std::getline(lines, line);) std::fprintf(f.get(), "# %s\n", line.c_str());
-  std::fprintf(f.get(), "# one line per source vertex: face b0 b1 b2 (0-based face of the target mesh)\n");
-  for (const SurfacePoint& p : images) {
-    std::fprintf(f.get(), "%d %.17g %.17g %.17g\n", p.face.idx, p.bary[0], p.bary[1], p.bary[2]);
-  }
-  f.close();
-}
-
-std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_faces) {
-  std::vector<int> line;
-  const Eigen::MatrixXd rows = read_attributes(path, &line);
-  if (rows.cols() != 4) {
-    throw IoError(path + ":" + std::to_string(line.front()) + ": expected 'face b0 b1 b2', found " +
-                  std::to_string(rows.cols()) + " numbers");
-  }
-  std::vector<SurfacePoint> images;
-  images.reserve(static_cast<size_t>(rows.rows()));
-  for (Eigen::Index i = 0; i < rows.rows(); ++i) {
-    const double face = rows(i, 0);
-    if (face != std::floor(face) || face < 0 || face >= n_target_faces) {
-      throw IoError(path + ":" + std::to_string(line[static_cast<size_t>(i)]) + ": face " + std::to_string(face) +
-                    " is not a face index of the target mesh (" + std::to_string(n_target_faces) + " faces)");
-    }
-    images.push_back(SurfacePoint::in_face(FaceId(static_cast<int>(face)), {rows(i, 1), rows(i, 2), rows(i, 3)}));
-  }
-  return images;
-}
 
 void write_barycentric_matrix(const std::string& path, const std::vector<SurfacePoint>& images,
                               const Eigen::MatrixXi& F_target) {
@@ -65,6 +31,16 @@ void write_barycentric_matrix(const std::string& path, const std::vector<Surface
     }
   }
   f.close();
+}
+
+std::vector<std::string> map_output_names() {
+  std::vector<std::string> names = {"A_to_B.txt", "B_to_A.txt", "A_to_B.ijv", "B_to_A.ijv"};
+  for (std::string& name : cut_output_names()) names.push_back(std::move(name));
+  for (const char* name : {"cut_A_to_B.txt", "cut_B_to_A.txt", "render.png", "distortion.png", "A_textured.obj",
+                           "A_textured.mtl", "B_textured.obj", "B_textured.mtl", "texture.png", "report.json"}) {
+    names.emplace_back(name);
+  }
+  return names;
 }
 
 nlohmann::json map_report(const MapResult& map, const std::string& path_a, const TriangleMesh& a,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 // The implementation with internal linkage: a host program that uses stb_image_write itself keeps its own.
 #define STB_IMAGE_WRITE_STATIC
@@ -9,6 +10,7 @@
 #include <stb_image_write.h>
 
 #include "core/errors.h"
+#include "io/output_file.h"
 
 namespace liftmap {
 
@@ -86,8 +88,13 @@ void write_png(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3)
     throw InvalidInputError("write_png: empty or inconsistent image for " + path);
-  if (stbi_write_png(path.c_str(), image.width, image.height, 3, image.rgb.data(), image.width * 3) == 0)
+  OutputFile file(path);
+  const auto write = [](void* context, void* data, int size) {
+    std::fwrite(data, 1, static_cast<size_t>(size), static_cast<std::FILE*>(context));
+  };
+  if (stbi_write_png_to_func(write, file.get(), image.width, image.height, 3, image.rgb.data(), image.width * 3) == 0)
     throw IoError(path + ": cannot write PNG");
+  file.close();
 }
 
 }  // namespace liftmap

@@ -76,6 +76,75 @@ TEST(CheckMesh, NamesTheOffendingElements) {
   }
 }
 
+TEST(CheckMesh, InsideOutMeshIsReported) {
+  // Consistently oriented, closed, genus 0, but every normal points inward: it used to map "successfully", with
+  // a 21.7% error against the true map.
+  for (const char* name : {"camel.off", "larger_sphere.off"}) {
+    SCOPED_TRACE(name);
+    TriangleMesh m = testing::read_demo_mesh(name);
+    m.F.col(1).swap(m.F.col(2));
+    const MeshReport r = check_mesh(m.V, m.F);
+    EXPECT_FALSE(r.mappable());
+    EXPECT_TRUE(has_problem(r, "inside-out mesh", "the faces are oriented inward (signed volume -")) << r.summary();
+    EXPECT_EQ(r.genus, 0) << "an inside-out mesh is still a genus-0 surface";
+    EXPECT_THROW(require_mappable(r, name), InvalidInputError);
+  }
+}
+
+TEST(CheckMesh, CoordinatesThePipelineCannotHandleAreReported) {
+  const TriangleMesh camel = testing::read_demo_mesh("camel.off");
+  struct Case {
+    double scale, offset;
+    const char* kind;
+    const char* example;
+  };
+  // Each of these was "mappable" while `map` failed on it ("cut: mesh A is not connected", "jacobian_operator:
+  // face 161 is degenerate").
+  const Case cases[] = {
+      {1e307, 0, "coordinate out of range", "beyond +-1e+30: scale the mesh down"},
+      {1e31, 0, "coordinate out of range", "beyond +-1e+30"},
+      {1e-31, 0, "coordinate out of range", "is below 1e-30: scale the mesh up"},
+      {1, 1e12, "mesh far from the origin", "times the bounding box diagonal"},
+      {1, 1e5, "mesh far from the origin", "(at most 1e+04)"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::to_string(c.scale) + " " + std::to_string(c.offset));
+    const Eigen::MatrixXd V = (camel.V * c.scale).array() + c.offset;
+    const MeshReport r = check_mesh(V, camel.F);
+    EXPECT_FALSE(r.mappable());
+    EXPECT_TRUE(has_problem(r, c.kind, c.example)) << r.summary();
+  }
+  // Inside the limits the mesh stays mappable (tests/cli/input_validation.sh maps such copies).
+  for (const auto& [scale, offset] : {std::pair{1e29, 0.0}, std::pair{1e-29, 0.0}, std::pair{1.0, 1e3}}) {
+    const Eigen::MatrixXd V = (camel.V * scale).array() + offset;
+    EXPECT_TRUE(check_mesh(V, camel.F).mappable())
+        << scale << " " << offset << ": " << check_mesh(V, camel.F).summary();
+  }
+}
+
+TEST(CheckMesh, EdgeFarShorterThanTheMeshIsReported) {
+  // A tetrahedron with one vertex 1e-9 of the size away from another: no face is a sliver by its own shape
+  // test's standard, but the mesh spans 1e9 of its shortest edge.
+  Eigen::MatrixXd V(5, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1e-9, 1e-9, 1e-9;
+  Eigen::MatrixXi F(6, 3);
+  F << 0, 2, 1, 1, 2, 3, 0, 1, 4, 1, 3, 4, 3, 2, 4, 2, 0, 4;
+  const MeshReport r = check_mesh(V, F);
+  EXPECT_TRUE(has_problem(r, "edge too short for the mesh's extent", "of the bounding box diagonal (at least 1e-08)"))
+      << r.summary();
+}
+
+TEST(CheckMesh, BoundaryLoopsAreUndefinedWhereTheBoundaryEdgesAreNot) {
+  // check printed "boundary loops: 0" beside "boundary edge (12)" for a non-manifold mesh.
+  const TriangleMesh m = read_mesh(testing::test_data("bad/nonmanifold_edge.off"));
+  const MeshReport r = check_mesh(m.V, m.F);
+  EXPECT_FALSE(r.n_boundary_loops.has_value());
+  const TriangleMesh open = read_mesh(testing::test_data("bad/single_triangle.off"));
+  const MeshReport o = check_mesh(open.V, open.F);
+  EXPECT_EQ(o.n_boundary_edges, 3);
+  EXPECT_EQ(o.n_boundary_loops, 1);
+}
+
 TEST(CheckMesh, SliverThatIsNotDegenerateIsAccepted) {
   // A thin but valid tetrahedron: heights of 1e-6 relative to the edges are fine.
   Eigen::MatrixXd V(4, 3);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 
 #include "common/test_meshes.h"
 #include "core/errors.h"
@@ -17,6 +18,16 @@ TEST(Landmarks, ReadsPairsWithCommentsAndLineNumbers) {
   EXPECT_EQ(lm.b[2].idx, 1);
   EXPECT_EQ(lm.line[0], 2);
   EXPECT_EQ(lm.line[2], 4);
+}
+
+TEST(Landmarks, AByteOrderMarkIsSkipped) {
+  // It used to give "'\xEF\xBB\xBF117' is not a vertex index", the mark invisible in the message.
+  std::istringstream in(
+      "\xEF\xBB\xBF"
+      "117 3\n5 4\n");
+  const Landmarks lm = read_landmarks(in, "bom.txt", 200, 200);
+  ASSERT_EQ(lm.a.size(), 2U);
+  EXPECT_EQ(lm.a[0].idx, 117);
 }
 
 TEST(Landmarks, WriteReadRoundTrip) {

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Map files read by `eval` and `transfer` are validated (issue 26: `eval` printed "mean error: nan" and exited 0
+# for NaN barycentrics; `transfer` wrote NaN or off-surface points for negative ones, ones that do not sum to 1,
+# or 1e308): the file and line named, exit 3 for a line that is not a face index and 3 numbers, exit 4 for
+# barycentric coordinates that are not a point of the face.
+set -u
+liftmap="$1"
+meshes="$2"
+examples="$3"
+source "$(dirname "$0")/lib.sh"
+a="$meshes/larger_sphere.off"
+b="$meshes/ellipsoid.off"
+expect "map" 0 ".*" -- map "$a" "$b" -l "$examples/sphere-ellipsoid/landmarks.txt" -o "$tmp/m" --quiet
+good="$tmp/m/A_to_B.txt"
+first=$(grep -n -v '^#' "$good" | head -1 | cut -d: -f1)  # line number of the first map line
+
+corrupt() {  # NAME REPLACEMENT: the first map line replaced
+  awk -v n="$first" -v r="$2" 'NR == n { print r; next } { print }' "$good" >"$tmp/$1.txt"
+}
+bad() {  # NAME REPLACEMENT CODE PATTERN
+  corrupt "$1" "$2"
+  local f="$tmp/$1.txt"
+  expect "$1: eval" "$3" "^liftmap: $f:$first: $4" -- eval "$f" "$good" --target "$b"
+  expect "$1: eval as truth" "$3" "^liftmap: $f:$first: $4" -- eval "$good" "$f" --target "$b"
+  expect "$1: transfer mesh" "$3" "^liftmap: $f:$first: $4" -- transfer mesh "$f" --onto "$b" --connectivity "$a" \
+    -o "$tmp/$1_out.obj"
+  require "$1: transfer wrote nothing" test ! -e "$tmp/$1_out.obj"
+}
+bad nan "0 nan 0.5 0.5" 4 "barycentric coordinate nan is not finite"
+bad inf "0 inf 0 0" 4 "barycentric coordinate inf is not finite"
+bad negative "0 -0.5 1 0.5" 4 "barycentric coordinate -0.5 is negative: the point is outside face 0"
+bad sum "0 0.5 0.5 0.5" 4 "barycentric coordinates sum to 1.5, not 1"
+bad huge "0 1e308 0 0" 4 "barycentric coordinates sum to 1e\+308, not 1"
+bad face_range "320 1 0 0" 3 "face 320 is not a face index of the target mesh \(320 faces\)"
+bad face_negative "-1 1 0 0" 3 "face -1 is not a face index"
+bad face_fraction "2.5 1 0 0" 3 "face 2.5 is not a face index"
+bad face_nan "nan 1 0 0" 3 "face nan is not a face index"
+bad columns "0 1 0" 3 "expected 'face b0 b1 b2', found 3 fields"
+bad word "0 one 0 0" 3 "'one' is not a number"
+
+# Within the tolerance (1e-6) coordinates as another tool prints them (7 digits) are accepted.
+corrupt rounded "0 0.3333333 0.3333333 0.3333334"
+expect "rounded coordinates accepted" 0 "mean error" -- eval "$tmp/rounded.txt" "$good" --target "$b"
+expect "map against itself" 0 "mean error: 0" -- eval "$good" "$good" --target "$b"
+finish
