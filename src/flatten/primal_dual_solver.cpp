@@ -553,6 +553,17 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     return x;
   };
 
+  // The objective cone m's part A_obj d of a direction d (p = 2): (dT_m, sqrt(w_j) de_j over the mesh's faces).
+  auto objective_direction = [&](const Direction& d, size_t m) {
+    const ObjectiveCone& oc = obj[m];
+    Eigen::VectorXd dso(oc.faces.size() + 1);
+    dso(0) = d.dT[m];
+    for (size_t i = 0; i < oc.faces.size(); ++i) {
+      dso(static_cast<Eigen::Index>(i) + 1) = oc.sqrt_w(static_cast<Eigen::Index>(i)) * d.dy(kAux * oc.faces[i] + 3);
+    }
+    return dso;
+  };
+
   // Scaled directions of one solve, per cone.
   struct Scaled {
     Eigen::Matrix<double, kRows, Eigen::Dynamic> ds, dz;
@@ -594,13 +605,7 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     }
     if (!st.p_inf) {
       for (size_t m = 0; m < 2; ++m) {
-        const ObjectiveCone& oc = obj[m];
-        Eigen::VectorXd dso(oc.faces.size() + 1);
-        dso(0) = d.dT[m];
-        for (size_t i = 0; i < oc.faces.size(); ++i) {
-          dso(static_cast<Eigen::Index>(i) + 1) =
-              oc.sqrt_w(static_cast<Eigen::Index>(i)) * d.dy(kAux * oc.faces[i] + 3);
-        }
+        const Eigen::VectorXd dso = objective_direction(d, m);
         sc.ds_obj[m] = apply_winv(w_obj[m], dso);
         sc.dz_obj[m] = U_obj[m] - sc.ds_obj[m];
         amax = std::min({amax, max_step(lambda_obj[m], sc.ds_obj[m]), max_step(lambda_obj[m], sc.dz_obj[m])});
@@ -720,13 +725,7 @@ BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& proble
     std::array<Eigen::VectorXd, 2> V_obj;
     if (!st.p_inf) {
       for (size_t m = 0; m < 2; ++m) {
-        const ObjectiveCone& oc = obj[m];
-        Eigen::VectorXd dso(oc.faces.size() + 1);
-        dso(0) = d.dT[m];
-        for (size_t i = 0; i < oc.faces.size(); ++i) {
-          dso(static_cast<Eigen::Index>(i) + 1) =
-              oc.sqrt_w(static_cast<Eigen::Index>(i)) * d.dy(kAux * oc.faces[i] + 3);
-        }
+        const Eigen::VectorXd dso = objective_direction(d, m);
         V_obj[m] = apply_winv(w_obj[m], apply_winv(w_obj[m], dso));
       }
     }
