@@ -4,12 +4,13 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "core/edge_graph_distance.h"
 #include "core/mesh.h"
 
 namespace liftmap {
 
-/// Shortest-path distances along mesh edges (Dijkstra) from `source` to every vertex. An upper bound of the
-/// geodesic distance, typically a few percent above it; good enough to rank landmark pairs.
+/// Shortest-path distances along mesh edges from `source` to every vertex (edge_graph_distances with one source);
+/// good enough to rank landmark pairs.
 /// \param mesh connectivity
 /// \param V #V by 3 positions
 /// \return #V distances (infinity for unreachable vertices)

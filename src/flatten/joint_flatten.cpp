@@ -170,7 +170,7 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
   const int n_mesh_slots = next;
   sp.n_slots = n_mesh_slots + (options.ghost_faces ? nb : 0);
 
-  // Tutte start: corresponding boundary vertices at the same point of the unit circle.
+  // Start: corresponding boundary vertices at the same point of the unit circle, interiors by flattening_start.
   const Eigen::VectorXd s = 0.5 * (arc_fractions(m.V, m.boundary) + arc_fractions(n.V, n.boundary));
   Eigen::MatrixXd B(nb, 2);
   for (int i = 0; i < nb; ++i) {
@@ -180,8 +180,14 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
   jp.X0 = Eigen::MatrixXd::Zero(sp.n_slots, 2);
   for (int k = 0; k < 2; ++k) {
     const FlatteningDisk& d = *disks[static_cast<size_t>(k)];
-    const Eigen::MatrixXd U = tutte_embedding(*d.mesh, d.V, d.boundary, B);
     const SubproblemMesh& sm = sp.meshes[static_cast<size_t>(k)];
+    const auto energy = [&](const Eigen::MatrixXd& U) {
+      double max_distortion = 0;
+      return energy_of(sm, U, options, max_distortion);
+    };
+    FlatteningStart start = flattening_start(*d.mesh, d.V, d.boundary, B, energy);
+    jp.start[static_cast<size_t>(k)] = start.chosen;
+    const Eigen::MatrixXd& U = start.U;
     for (size_t v = 0; v < sm.slot.size(); ++v) {
       if (sm.slot[v] >= 0) jp.X0.row(sm.slot[v]) = U.row(static_cast<Eigen::Index>(v));
     }
@@ -240,13 +246,17 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
   JointFlattenResult res;
   res.scale_m = jp.scale_m;
   res.scale_n = jp.scale_n;
+  res.start = jp.start;
 
   auto record = [&](const Eigen::MatrixXd& X, JointFlattenIteration& it) {
     const std::array<const Mesh*, 2> meshes{m.mesh, n.mesh};
     double e[2];
     for (int k = 0; k < 2; ++k) {
       const Eigen::MatrixXd U = mesh_positions(sp, k, X);
-      if ((signed_double_areas(jp.F[static_cast<size_t>(k)], U).array() <= 0).any()) {
+      const Eigen::VectorXd areas = signed_double_areas(jp.F[static_cast<size_t>(k)], U);
+      const double ratio = areas.minCoeff() / areas.mean();
+      it.min_area_ratio = k == 0 ? ratio : std::min(it.min_area_ratio, ratio);
+      if ((areas.array() <= 0).any()) {
         throw PipelineError("joint_flatten: a face is flipped or degenerate in outer iteration " +
                             std::to_string(res.iterations.size()));
       }

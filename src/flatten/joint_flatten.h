@@ -9,6 +9,7 @@
 #include "core/mesh.h"
 #include "flatten/barrier_solver.h"
 #include "flatten/distortion.h"
+#include "flatten/flattening_start.h"
 
 namespace liftmap {
 
@@ -100,6 +101,7 @@ struct JointFlattenIteration {
   double energy = 0;  ///< E_p(Phi) + E_p(Psi), eq. (8) with the chosen h, p (normalised meshes)
   double energy_m = 0, energy_n = 0;
   double max_distortion = 0;        ///< max over both meshes of max(Sigma, 1/sigma) (§4.2)
+  double min_area_ratio = 0;        ///< min over both meshes of the smallest face area over the mean
   double subproblem_objective = 0;  ///< optimum of (10) found in this iteration (0 for the start)
   int newton_steps = 0;
   double subproblem_gap = 0;          ///< relative gap the subproblem was solved to (gap_fraction; 0 for the start)
@@ -121,6 +123,7 @@ struct JointFlattenResult {
   std::string stop_reason;          ///< why the outer loop stopped before converging, if it did (empty otherwise)
   bool converged = false;           ///< the relative tolerance was met before max_iterations
   double scale_m = 1, scale_n = 1;  ///< factors applied to the disks' coordinates internally
+  std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start: drift, energy, smallest face area
 };
 
 /// Computes liftable flattenings Phi, Psi of two disks with a common boundary (Algorithm 2): mean-value Tutte
@@ -138,12 +141,13 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
 /// problem of one outer iteration at the given shared positions X, with rotations taken from X.
 struct JointFlattenProblem {
   ConvexSubproblem subproblem;  ///< rotations filled by set_rotations()
-  Eigen::MatrixXd X0;           ///< #slots by 2 Tutte start (boundary slots first, in boundary order)
+  Eigen::MatrixXd X0;           ///< #slots by 2 start (boundary slots first, in boundary order)
   std::array<Eigen::MatrixXi, 2> F;
+  std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start (flattening_start)
   double scale_m = 1, scale_n = 1;
 };
 
-/// Normalises, validates, builds the slots and ghost faces, and computes the Tutte start.
+/// Normalises, validates, builds the slots and ghost faces, and computes the start (flattening_start).
 JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const FlatteningDisk& n,
                                                const JointFlattenOptions& options);
 

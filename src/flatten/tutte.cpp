@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseLU>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -9,13 +11,57 @@
 
 namespace liftmap {
 
+namespace {
+
+/// Face f laid out in the plane, isometric to the 3D triangle.
+std::array<Eigen::Vector2d, 3> face_layout(const Eigen::MatrixXd& V, const std::array<VertexId, 3>& fv, int f) {
+  const Eigen::Vector3d e1 = V.row(fv[1].idx) - V.row(fv[0].idx);
+  const Eigen::Vector3d e2 = V.row(fv[2].idx) - V.row(fv[0].idx);
+  const double l1 = e1.norm();
+  const Eigen::Vector3d n = e1.cross(e2);
+  if (!(l1 > 0) || !(e2.norm() > 0) || !(n.norm() > 0)) {
+    throw InvalidInputError("tutte_embedding: face " + std::to_string(f) + " is degenerate (zero area)");
+  }
+  const Eigen::Vector3d u = e1 / l1;
+  const Eigen::Vector3d w = n.normalized().cross(u);
+  return {Eigen::Vector2d::Zero(), Eigen::Vector2d(l1, 0), Eigen::Vector2d(e2.dot(u), e2.dot(w))};
+}
+
+/// The weight of edge (i, other) in vertex i's convex combination, given the mean-value part.
+double edge_weight(const Eigen::MatrixXd& V, const TutteWeights& weights, int i, int other, double mean_value) {
+  if (weights.depth.empty() || weights.drift == 0) return mean_value;
+  const double slope = (weights.depth[static_cast<size_t>(i)] - weights.depth[static_cast<size_t>(other)]) /
+                       (V.row(i) - V.row(other)).norm();
+  const double local = weights.drift_scale.empty() ? 1.0 : weights.drift_scale[static_cast<size_t>(i)];
+  return mean_value * std::exp(local * weights.drift * std::clamp(slope, -1.0, 1.0));
+}
+
+void check_weights(const TutteWeights& weights, int n) {
+  if (!weights.depth.empty() && weights.depth.size() != static_cast<size_t>(n)) {
+    throw InvalidInputError("tutte_embedding: weights.depth must have #V values");
+  }
+  if (!weights.drift_scale.empty() && weights.drift_scale.size() != static_cast<size_t>(n)) {
+    throw InvalidInputError("tutte_embedding: weights.drift_scale must have #V values");
+  }
+  if (!std::isfinite(weights.drift)) throw InvalidInputError("tutte_embedding: weights.drift must be finite");
+}
+
+}  // namespace
+
 Eigen::MatrixXd tutte_embedding(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& boundary,
-                                const Eigen::MatrixXd& B) {
+                                const Eigen::MatrixXd& B, const TutteWeights& weights) {
+  return std::move(tutte_embeddings(mesh, V, boundary, B, {weights}).front());
+}
+
+std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::MatrixXd& V,
+                                              const std::vector<VertexId>& boundary, const Eigen::MatrixXd& B,
+                                              const std::vector<TutteWeights>& weights) {
   const int n = mesh.n_vertices();
   if (V.rows() != n || V.cols() != 3) throw InvalidInputError("tutte_embedding: V must be #V by 3");
   if (B.rows() != static_cast<Eigen::Index>(boundary.size()) || B.cols() != 2) {
     throw InvalidInputError("tutte_embedding: B must be #boundary by 2");
   }
+  for (const TutteWeights& w : weights) check_weights(w, n);
   const auto loops = mesh.boundary_loops();
   if (loops.size() != 1 || mesh.euler_characteristic() != 1) {
     throw InvalidInputError("tutte_embedding: the mesh is not a disk");
@@ -44,50 +90,56 @@ Eigen::MatrixXd tutte_embedding(const Mesh& mesh, const Eigen::MatrixXd& V, cons
 
   // Mean-value weights (Floater 2003): w_ij = (tan(a/2) + tan(b/2)) / |x_j - x_i|, with a, b the angles at i of
   // the two faces beside edge ij. Each face corner contributes tan(angle/2) / |edge| to its two edges.
-  std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, 2);
+  struct Corner {
+    int row, other;
+    double mean_value;
+  };
+  std::vector<Corner> corners;
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const auto fv = mesh.face_vertices(FaceId(f));
+    const std::array<Eigen::Vector2d, 3> q = face_layout(V, fv, f);
     for (int c = 0; c < 3; ++c) {
-      const int i = fv[c].idx;
-      const int row = unknown[static_cast<size_t>(i)];
+      const int row = unknown[static_cast<size_t>(fv[c].idx)];
       if (row < 0) continue;
-      const int j = fv[(c + 1) % 3].idx;
-      const int k = fv[(c + 2) % 3].idx;
-      const Eigen::Vector3d ej = V.row(j) - V.row(i);
-      const Eigen::Vector3d ek = V.row(k) - V.row(i);
-      const double lj = ej.norm();
-      const double lk = ek.norm();
-      if (!(lj > 0) || !(lk > 0)) {
-        throw InvalidInputError("tutte_embedding: face " + std::to_string(f) + " has a zero-length edge");
-      }
-      const double angle = std::atan2(ej.cross(ek).norm(), ej.dot(ek));
-      const double t = std::tan(0.5 * angle);
-      for (const auto& [other, len] : {std::pair{j, lj}, std::pair{k, lk}}) {
-        const double w = t / len;
-        triplets.emplace_back(row, row, w);
-        const int col = unknown[static_cast<size_t>(other)];
-        if (col >= 0) {
-          triplets.emplace_back(row, col, -w);
-        } else {
-          rhs.row(row) += w * U.row(other);
-        }
-      }
+      const Eigen::Vector2d ej = q[(c + 1) % 3] - q[c];
+      const Eigen::Vector2d ek = q[(c + 2) % 3] - q[c];
+      const double t = std::tan(0.5 * std::atan2(std::abs(ej.x() * ek.y() - ej.y() * ek.x()), ej.dot(ek)));
+      corners.push_back({fv[c].idx, fv[(c + 1) % 3].idx, t / ej.norm()});
+      corners.push_back({fv[c].idx, fv[(c + 2) % 3].idx, t / ek.norm()});
     }
   }
-  Eigen::SparseMatrix<double> L(m, m);
-  L.setFromTriplets(triplets.begin(), triplets.end());
-  if (m == 0) return U;
+  std::vector<Eigen::MatrixXd> result(weights.size(), U);
+  if (m == 0) return result;
+  // One sparsity pattern for every set of weights: analysed once, factorised per set.
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(L);
-  if (lu.info() != Eigen::Success) throw PipelineError("tutte_embedding: the mean-value Laplacian is singular");
-  const Eigen::MatrixXd X = lu.solve(rhs);
-  if (lu.info() != Eigen::Success || !X.allFinite()) throw PipelineError("tutte_embedding: the solve failed");
-  for (int v = 0; v < n; ++v) {
-    const int u = unknown[static_cast<size_t>(v)];
-    if (u >= 0) U.row(v) = X.row(u);
+  for (size_t s = 0; s < weights.size(); ++s) {
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(2 * corners.size());
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, 2);
+    for (const Corner& c : corners) {
+      const int row = unknown[static_cast<size_t>(c.row)];
+      const double w = edge_weight(V, weights[s], c.row, c.other, c.mean_value);
+      triplets.emplace_back(row, row, w);
+      const int col = unknown[static_cast<size_t>(c.other)];
+      if (col >= 0) {
+        triplets.emplace_back(row, col, -w);
+      } else {
+        rhs.row(row) += w * U.row(c.other);
+      }
+    }
+    Eigen::SparseMatrix<double> L(m, m);
+    L.setFromTriplets(triplets.begin(), triplets.end());
+    if (s == 0) lu.analyzePattern(L);
+    lu.factorize(L);
+    if (lu.info() != Eigen::Success) throw PipelineError("tutte_embedding: the mean-value Laplacian is singular");
+    const Eigen::MatrixXd X = lu.solve(rhs);
+    if (lu.info() != Eigen::Success || !X.allFinite()) throw PipelineError("tutte_embedding: the solve failed");
+    for (int v = 0; v < n; ++v) {
+      const int u = unknown[static_cast<size_t>(v)];
+      if (u >= 0) result[s].row(v) = X.row(u);
+    }
   }
-  return U;
+  return result;
 }
 
 }  // namespace liftmap

@@ -235,13 +235,13 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
     m.boundary.emplace_back(pair[0]);
     n.boundary.emplace_back(pair[1]);
   }
-  progress("flatten", "Tutte start and convex subproblems (10)");
+  progress("flatten", "start (Tutte, drifted where it squeezes) and convex subproblems (10)");
   JointFlattenOptions flatten_options = options.flatten;
   flatten_options.on_iteration = [&](size_t i, const JointFlattenIteration& it) {
     if (options.flatten.on_iteration) options.flatten.on_iteration(i, it);
     std::ostringstream s;
     s << (i == 0 ? "start" : "iteration " + std::to_string(i)) << ": energy " << it.energy << ", max distortion "
-      << it.max_distortion;
+      << it.max_distortion << ", smallest face " << it.min_area_ratio << " of the mean";
     if (i > 0) {
       s << " (" << it.seconds << " s, " << it.newton_steps << " Newton steps"
         << (it.subproblem_converged ? "" : ", subproblem gap not certified") << ")";

@@ -82,6 +82,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                   {"energy_A", i.energy_m},
                   {"energy_B", i.energy_n},
                   {"max_distortion", i.max_distortion},
+                  {"min_area_ratio", i.min_area_ratio},
                   {"subproblem_objective", i.subproblem_objective},
                   {"newton_steps", i.newton_steps},
                   {"subproblem_gap", i.subproblem_gap},
@@ -89,8 +90,17 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                   {"stalled_centrings", i.stalled_centrings},
                   {"seconds", i.seconds}});
   }
-  j["flatten"] = {
-      {"iterations", it}, {"converged", map.flattening.converged}, {"stop_reason", map.flattening.stop_reason}};
+  nlohmann::json start = nlohmann::json::array();
+  for (const auto& s : map.flattening.start) {
+    start.push_back({{"drift", s.drift},
+                     {"drift_where_squeezed", s.local},
+                     {"energy", s.energy},
+                     {"min_area_ratio", s.min_area_ratio}});
+  }
+  j["flatten"] = {{"start", start},
+                  {"iterations", it},
+                  {"converged", map.flattening.converged},
+                  {"stop_reason", map.flattening.stop_reason}};
   j["seconds"] = {{"cut", map.seconds.cut},
                   {"flatten", map.seconds.flatten},
                   {"lift", map.seconds.lift},

@@ -1,6 +1,8 @@
 #include "disk_patches.h"
 
+#include <algorithm>
 #include <deque>
+#include <numbers>
 #include <stdexcept>
 
 #include "flatten/boundary_loop.h"
@@ -88,6 +90,48 @@ TestDisk make_disk(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std
   d.mesh = std::make_unique<Mesh>(d.F, nv);
   d.boundary = ccw_boundary_loop(*d.mesh);
   return d;
+}
+
+TestDisk capped_tube(double length_over_girth, int around) {
+  const double step = 2 * std::numbers::pi / around * 0.87;
+  const double length = length_over_girth * 2 * std::numbers::pi;
+  std::vector<std::pair<double, double>> rings;  // (radius, z) of each ring, then the tip
+  for (double z = 0; z < length; z += step) rings.emplace_back(1.0, z);
+  const int cap_rings = std::max(2, static_cast<int>(0.5 * std::numbers::pi / step));
+  for (int k = 0; k < cap_rings; ++k) {
+    const double t = 0.5 * std::numbers::pi * k / cap_rings;
+    rings.emplace_back(std::cos(t), length + std::sin(t));
+  }
+  const auto nr = static_cast<int>(rings.size());
+  Eigen::MatrixXd V(nr * around + 1, 3);
+  for (int r = 0; r < nr; ++r) {
+    for (int j = 0; j < around; ++j) {
+      const double a = 2 * std::numbers::pi * (j + 0.5 * (r % 2)) / around;
+      V.row(r * around + j) << rings[static_cast<size_t>(r)].first * std::cos(a),
+          rings[static_cast<size_t>(r)].first * std::sin(a), rings[static_cast<size_t>(r)].second;
+    }
+  }
+  V.row(nr * around) << 0, 0, length + 1;
+  std::vector<Eigen::Vector3i> faces;
+  for (int r = 0; r + 1 < nr; ++r) {
+    for (int j = 0; j < around; ++j) {
+      const int a = r * around + j, b = r * around + (j + 1) % around;
+      const int c = (r + 1) * around + j, d = (r + 1) * around + (j + 1) % around;
+      if (r % 2 == 0) {
+        faces.emplace_back(a, b, c);
+        faces.emplace_back(b, d, c);
+      } else {
+        faces.emplace_back(a, d, c);
+        faces.emplace_back(a, b, d);
+      }
+    }
+  }
+  for (int j = 0; j < around; ++j) faces.emplace_back((nr - 1) * around + j, (nr - 1) * around + (j + 1) % around, nr * around);
+  Eigen::MatrixXi F(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f) F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  std::vector<int> all(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) all[f] = static_cast<int>(f);
+  return make_disk(V, F, all);
 }
 
 TestDisk mesh_patch(const std::string& name, int seed_face, int n_faces, int n_boundary) {

@@ -49,6 +49,10 @@ std::pair<TestDisk, TestDisk> patch_pair(const std::string& a, const std::string
 /// counts agree).
 std::pair<TestDisk, TestDisk> punctured_pair(const std::string& a, const std::string& b, int hole_faces);
 
+/// A capped tube of girth 2 pi and length `length_over_girth` times that, open at z = 0 (the disk's boundary) and
+/// closed by a hemisphere: the shape of a part no cut enters. `around` vertices per ring, near-equilateral faces.
+TestDisk capped_tube(double length_over_girth, int around = 16);
+
 /// One of the four (p, h) settings of problem (10), with a name for parametrised tests.
 struct Combo {
   double p;
