@@ -49,7 +49,7 @@ test-blas-kernels: meshes build
 demo: meshes build
 	./scripts/demo.sh $(LIFTMAP)
 
-# Builds only what it runs (the tests are not needed), then works to a 27-minute budget (bench/run.py's PLAN).
+# Builds only what it runs (the tests are not needed), then works to a 42-minute budget (bench/run.py's PLAN).
 bench: meshes $(BUILD)/build.ninja
 	cmake --build $(BUILD) --target liftmap benchmarks -j $(JOBS)
 	./bench/run.py $(BUILD)

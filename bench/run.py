@@ -15,6 +15,8 @@ section, and the whole run, within budget, and whatever did not fit is reported 
   4. The first convex subproblem against CVXOPT, side by side, at increasing sizes up to 2k faces per mesh, CVXOPT
      as far as its fitted growth says the budget allows.
   5. The stage benchmark programs bench_cut and bench_lift (output copied verbatim).
+  6. The whole-map sweep of the flattening start (bench/map_sweep.py: 60 configurations of real and tentacle
+     meshes, with its checks), as far as its budget goes.
 
 usage: bench/run.py BUILD_DIR [--budget SECONDS] [--quick] [--out FILE] [--only SECTIONS] [--pairs NAME...]
 Run it niced on a shared machine (`nice -n 19 bench/run.py build`); the results record the niceness and load.
@@ -38,7 +40,7 @@ MESHES = os.path.join(ROOT, "data", "meshes")
 FULL_ITERATIONS = 10  # liftmap map's default --max-iterations: a run without a cap may do this many
 
 # Seconds per section, and per example pair: runs (median over them) and the --max-iterations cap (None: the
-# default, a full map). The shares add up to 27 minutes, leaving room for `make bench`'s build step within 30.
+# default, a full map). The shares add up to 42 minutes (15 of them the whole-map sweep), leaving room for `make bench`'s build step.
 # A capped pair whose capped run shows that a full run fits in what is left of its budget is re-run uncapped.
 PLAN = {
     "pairs": {
@@ -53,6 +55,7 @@ PLAN = {
     "scaling": 180,
     "cvxopt": 420,
     "stages": 50,
+    "sweep": 900,
 }
 QUICK_PLAN = {
     "pairs": {"sphere-ellipsoid": {"runs": 1, "cap": 1, "budget": 60}},
@@ -62,8 +65,9 @@ QUICK_PLAN = {
     "scaling": 60,
     "cvxopt": 60,
     "stages": 60,
+    "sweep": 0,
 }
-SECTIONS = ("pairs", "orbifold", "profile", "scaling", "cvxopt", "stages")
+SECTIONS = ("pairs", "orbifold", "profile", "scaling", "cvxopt", "stages", "sweep")
 SCALING_PAIR = "sphere-ellipsoid"
 SCALING_SIZES = [5000, 20000, 80000, 200000]
 CVXOPT_SIZES = [100, 250, 500, 1000, 2000]  # faces per mesh; the issue asks for the ratio at about 2000
@@ -823,6 +827,29 @@ class Bench:
             except TimedOut as e:
                 self.md += [f"Not finished: {e}.", ""]
 
+    # ---- 6. whole-map sweep ----------------------------------------------------------------------------------
+    def sweep(self):
+        self.budget.section("sweep")
+        self.md += ["## 6. Whole-map sweep of the flattening start", ""]
+        out = tempfile.mkdtemp(prefix="liftmap-sweep-")
+        table = os.path.join(out, "table.md")
+        self.log("map_sweep")
+        try:
+            cmd = [sys.executable, os.path.join(ROOT, "bench", "map_sweep.py"), self.args.build, out, "--table", table,
+                   "--budget", f"{max(0.0, self.budget.left() - 90):.0f}"]
+            rc, wall, _, _, err = run_cmd(cmd, self.budget.left())
+            self.md += [f"`bench/map_sweep.py BUILD OUT`: {wall:.0f} s, exit {rc} (1: a configuration fails a check).",
+                        ""]
+            if os.path.exists(table):
+                with open(table) as f:
+                    self.md += [f.read(), ""]
+            else:
+                self.md += [f"stderr: {err.strip()[-500:]}", ""]
+        except TimedOut as e:
+            self.md += [f"Not finished: {e}.", ""]
+        finally:
+            shutil.rmtree(out, ignore_errors=True)
+
     # ---- summary ---------------------------------------------------------------------------------------------
     def summary(self):
         t = []
@@ -939,7 +966,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("build")
     ap.add_argument("--budget", type=float, help="seconds for the whole run; default: the plan's sum, "
-                    "1630 (--quick: 300); the sections' shares are scaled to it")
+                    "2530 (--quick: 300); the sections' shares are scaled to it")
     ap.add_argument("--quick", action="store_true", help="small sizes, one run: to test this script")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "RESULTS.md"))
     ap.add_argument("--only", default=",".join(SECTIONS), help="comma-separated sections to run (default: all "
@@ -950,7 +977,8 @@ def main():
     args.build = os.path.abspath(args.build)
     started, load_start = time.monotonic(), os.getloadavg()
     bench = Bench(args)
-    for section in (bench.pairs, bench.orbifold, bench.profile, bench.scaling, bench.cvxopt, bench.stages):
+    for section in (bench.pairs, bench.orbifold, bench.profile, bench.scaling, bench.cvxopt, bench.stages,
+                    bench.sweep):
         if section.__name__ not in args.only:
             continue
         try:

@@ -7,7 +7,8 @@
 // JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap); PROFILE_START_GAP_FRACTION=x sets
 // JointFlattenOptions::start_gap_fraction (0: every subproblem starts at the usual barrier parameter);
 // PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap; PROFILE_ISOTROPIC=0 turns off
-// BarrierOptions::isotropic_anticonformal_curvature; PROFILE_DELAUNAY_FLIPS=0 turns off CutOptions::delaunay_flips.
+// BarrierOptions::isotropic_anticonformal_curvature; PROFILE_DELAUNAY_FLIPS=0 turns off CutOptions::delaunay_flips;
+// PROFILE_START_STEPS=n sets JointFlattenOptions::start_optimization.max_iterations (0: off).
 
 #include <chrono>
 #include <cstdio>
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_GAP_FRACTION")) options.gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_START_GAP_FRACTION")) options.start_gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_MAX_SUBPROBLEM_GAP")) options.max_subproblem_gap = std::atof(g);
+  if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);
   if (const char* g = std::getenv("PROFILE_ISOTROPIC"))
     options.solver.isotropic_anticonformal_curvature = std::atoi(g) != 0;
   if (std::getenv("PROFILE_P_INF")) options.p = std::numeric_limits<double>::infinity();

@@ -1,6 +1,5 @@
 #include "cut/geodesic_distance.h"
 
-
 namespace liftmap {
 
 std::vector<double> edge_graph_distances(const Mesh& mesh, const Eigen::MatrixXd& V, VertexId source) {

@@ -1,5 +1,7 @@
 #include "cut/trace_cut_paths.h"
 
+#include "core/edge_graph_distance.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <functional>
@@ -85,38 +87,20 @@ struct Side {
   /// Shortest edge path from c to p through vertices that are neither on the tree nor landmarks, best per
   /// sector of p: sector -> (length, path from c to p).
   [[nodiscard]] std::map<int, std::pair<double, std::vector<int>>> shortest_paths(int c, int p) const {
-    const Mesh& mesh = refined.mesh;
-    const double inf = std::numeric_limits<double>::infinity();
-    const auto n = static_cast<size_t>(refined.n_vertices());
-    std::vector<double> dist(n, inf);
-    std::vector<int> pred(n, -1);
+    std::vector<double> dist;
+    std::vector<int> pred;
     std::map<int, std::pair<double, int>> best;  // sector -> (length, last vertex before p)
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-    dist[static_cast<size_t>(c)] = 0;
-    queue.emplace(0.0, c);
-    while (!queue.empty()) {
-      const double d = queue.top().first;
-      const int u = queue.top().second;
-      queue.pop();
-      if (d > dist[static_cast<size_t>(u)]) continue;
-      mesh.for_each_outgoing(VertexId(u), [&](HalfedgeId h) {
-        const int w = mesh.head(h).idx;
-        const double nd = d + length(u, w);
-        if (w == p) {
-          const int s = sector(p, u);
-          auto it = best.find(s);
-          if (it == best.end() || nd < it->second.first) best[s] = {nd, u};
-          return;
-        }
-        if (on_tree[static_cast<size_t>(w)] || landmark_of[static_cast<size_t>(w)] >= 0) return;
-        if (nd < dist[static_cast<size_t>(w)]) {
-          dist[static_cast<size_t>(w)] = nd;
-          pred[static_cast<size_t>(w)] = u;
-          queue.emplace(nd, w);
-        }
-      });
-    }
+    const auto relax = [&](int u, int w, double nd) {
+      if (w == p) {  // arrivals at p are recorded per sector, not relaxed
+        const int s = sector(p, u);
+        auto it = best.find(s);
+        if (it == best.end() || nd < it->second.first) best[s] = {nd, u};
+        return false;
+      }
+      return !on_tree[static_cast<size_t>(w)] && landmark_of[static_cast<size_t>(w)] < 0;
+    };
+    edge_graph_search(
+        refined.mesh, {c}, [&](int u, int w) { return length(u, w); }, relax, dist, &pred);
     std::map<int, std::pair<double, std::vector<int>>> out;
     for (const auto& [s, value] : best) {
       std::vector<int> path{p};

@@ -52,15 +52,16 @@ std::vector<double> squeeze(const Mesh& mesh, const Eigen::MatrixXd& V, const Ei
 }  // namespace
 
 FlatteningStart flattening_start(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& boundary,
-                                 const Eigen::MatrixXd& B,
-                                 const std::function<double(const Eigen::MatrixXd&)>& energy,
+                                 const Eigen::MatrixXd& B, const std::function<double(const Eigen::MatrixXd&)>& energy,
                                  const FlatteningStartOptions& options) {
   TutteWeights weights{.depth = edge_graph_distances(mesh, V, boundary)};
   const Eigen::MatrixXi F = mesh.faces();
   FlatteningStart best;
   best.chosen.energy = std::numeric_limits<double>::infinity();
   const auto consider = [&](Eigen::MatrixXd U, double drift, bool local) {
-    FlatteningStartCandidate c{.drift = drift, .local = local, .energy = std::numeric_limits<double>::infinity(),
+    FlatteningStartCandidate c{.drift = drift,
+                               .local = local,
+                               .energy = std::numeric_limits<double>::infinity(),
                                .min_area_ratio = min_area_ratio(F, U)};
     if (c.min_area_ratio > 0) c.energy = energy(U);
     best.candidates.push_back(c);
@@ -73,6 +74,7 @@ FlatteningStart flattening_start(const Mesh& mesh, const Eigen::MatrixXd& V, con
   const std::vector<double> local = squeeze(mesh, V, F, plain);
   consider(std::move(plain), 0, false);
   if (best.chosen.min_area_ratio >= options.min_area_ratio) return best;
+  best.squeezed = true;
   std::vector<TutteWeights> tried;
   for (const double d : options.drifts) {
     tried.push_back({.depth = weights.depth, .drift = d, .drift_scale = local});

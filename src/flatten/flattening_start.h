@@ -32,16 +32,17 @@ struct FlatteningStartOptions {
 
 /// One embedding tried.
 struct FlatteningStartCandidate {
-  double drift = 0;   ///< TutteWeights::drift (0: plain mean-value Tutte)
-  bool local = false;  ///< drift only where plain Tutte squeezes (TutteWeights::drift_scale)
+  double drift = 0;           ///< TutteWeights::drift (0: plain mean-value Tutte)
+  bool local = false;         ///< drift only where plain Tutte squeezes (TutteWeights::drift_scale)
   double energy = 0;          ///< the caller's energy of the embedding; +inf if a face is flipped or degenerate
   double min_area_ratio = 0;  ///< smallest face area over the mean face area (<= 0: flipped or degenerate)
 };
 
 /// The start of one disk.
 struct FlatteningStart {
-  Eigen::MatrixXd U;                                 ///< #V by 2 positions, boundary vertices at B
-  FlatteningStartCandidate chosen;                   ///< U's drift, energy and smallest face area
+  Eigen::MatrixXd U;                ///< #V by 2 positions, boundary vertices at B
+  FlatteningStartCandidate chosen;  ///< U's drift, energy and smallest face area
+  bool squeezed = false;            ///< plain Tutte left a face below min_area_ratio of the mean (drifts were tried)
   std::vector<FlatteningStartCandidate> candidates;  ///< every embedding tried: plain Tutte first
 };
 
@@ -50,10 +51,10 @@ struct FlatteningStart {
 /// \param mesh a disk; \param V #V by 3 positions; \param boundary its boundary loop in order
 /// \param B #boundary by 2 positions on a convex curve
 /// \param energy the flattening energy of #V by 2 positions (only called on embeddings with positive faces)
-/// \throw InvalidInputError as tutte_embedding(); PipelineError if no embedding tried has an embedding with positive faces.
+/// \throw InvalidInputError as tutte_embedding(); PipelineError if no embedding tried has an embedding with positive
+/// faces.
 FlatteningStart flattening_start(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& boundary,
-                                 const Eigen::MatrixXd& B,
-                                 const std::function<double(const Eigen::MatrixXd&)>& energy,
+                                 const Eigen::MatrixXd& B, const std::function<double(const Eigen::MatrixXd&)>& energy,
                                  const FlatteningStartOptions& options = {});
 
 }  // namespace liftmap

@@ -14,6 +14,7 @@
 #include "flatten/jacobian.h"
 #include "flatten/primal_dual_solver.h"
 #include "flatten/subproblem_faces.h"
+#include "flatten/symmetric_dirichlet.h"
 #include "flatten/tutte.h"
 
 namespace liftmap {
@@ -187,7 +188,17 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
     };
     FlatteningStart start = flattening_start(*d.mesh, d.V, d.boundary, B, energy);
     jp.start[static_cast<size_t>(k)] = start.chosen;
-    const Eigen::MatrixXd& U = start.U;
+    Eigen::MatrixXd U = std::move(start.U);
+    if (start.squeezed && options.start_optimization.max_iterations > 0) {
+      std::vector<char> fixed(static_cast<size_t>(d.mesh->n_vertices()), 0);
+      for (int v = 0; v < d.mesh->n_vertices(); ++v) {
+        fixed[static_cast<size_t>(v)] = d.mesh->is_boundary(VertexId(v)) || d.mesh->is_isolated(VertexId(v));
+      }
+      SymmetricDirichletResult sd =
+          minimize_symmetric_dirichlet(sm.jacobian, sm.F, fixed, U, options.start_optimization);
+      jp.start_steps[static_cast<size_t>(k)] = sd.iterations;
+      U = std::move(sd.U);
+    }
     for (size_t v = 0; v < sm.slot.size(); ++v) {
       if (sm.slot[v] >= 0) jp.X0.row(sm.slot[v]) = U.row(static_cast<Eigen::Index>(v));
     }
@@ -247,6 +258,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
   res.scale_m = jp.scale_m;
   res.scale_n = jp.scale_n;
   res.start = jp.start;
+  res.start_steps = jp.start_steps;
 
   auto record = [&](const Eigen::MatrixXd& X, JointFlattenIteration& it) {
     const std::array<const Mesh*, 2> meshes{m.mesh, n.mesh};
@@ -302,16 +314,13 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, solver, cholesky, &assembly)
                        : solve_convex_subproblem(sp, X, solver, cholesky, &assembly);
     } catch (const PipelineError& e) {
-      // Name the iteration and the distortion it started from: the solver's own message cannot.
-      const double start_max = res.iterations.back().max_distortion;
+      // The previous iterate passed every liftability check: it is the result, with the reason it is the last.
       std::ostringstream msg;
-      msg << "joint_flatten: outer iteration " << iter + 1 << ": " << e.what()
-          << " (the flattenings' max distortion was " << start_max << ")";
-      if (start_max > 1e6) {
-        msg << "; distortions this large are beyond double precision: add landmarks at the shapes' extremities "
-               "(limbs, ears, tails), so that the cut opens them instead of the Tutte start squeezing them";
-      }
-      throw PipelineError(msg.str());
+      msg << "the convex subproblem of outer iteration " << iter + 1 << " failed (" << e.what()
+          << ") from flattenings of max distortion " << res.iterations.back().max_distortion
+          << "; kept the flattenings of iteration " << iter;
+      res.stop_reason = msg.str();
+      break;
     }
     // The start X is feasible with objective E(X) (the rotations are its polar ones): a result above that
     // (only possible if the solver stopped early, far from the central path's end) would break monotonicity.
@@ -332,7 +341,16 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     it.newton_steps = br.newton_steps;
     it.subproblem_converged = br.converged;
     it.stalled_centrings = br.stalled_centrings;
-    record(br.X, it);
+    try {
+      record(br.X, it);
+    } catch (const PipelineError& e) {  // the previous iterate passed these checks: it is the result
+      res.stop_reason = std::string(e.what()) + "; kept the flattenings of iteration " + std::to_string(iter);
+      if (options.keep_iterates) {
+        res.Phi_iterates.resize(res.iterations.size());
+        res.Psi_iterates.resize(res.iterations.size());
+      }
+      break;
+    }
     it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double previous = res.iterations.back().energy;
     if (it.energy > previous) {

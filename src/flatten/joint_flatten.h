@@ -10,6 +10,7 @@
 #include "flatten/barrier_solver.h"
 #include "flatten/distortion.h"
 #include "flatten/flattening_start.h"
+#include "flatten/symmetric_dirichlet.h"
 
 namespace liftmap {
 
@@ -83,6 +84,12 @@ struct JointFlattenOptions {
   /// medians of 16 and 18, camel-cow 21 and 22.
   double start_gap_fraction = 0.15;
   SubproblemSolver method = SubproblemSolver::kAuto;
+  /// A disk whose plain Tutte start squeezed a face (FlatteningStart::squeezed) has its drifted start lowered in
+  /// the symmetric Dirichlet energy, boundary fixed, never flipping a face (minimize_symmetric_dirichlet);
+  /// max_iterations 0: off. On the L/C = 8 tentacle pair: start max distortion 4.7e4 -> 47, first subproblem
+  /// 47 -> 29 Newton steps, energy after 10 outer iterations 14.52 -> 14.15. On starts plain Tutte did not squeeze
+  /// it cost more than it saved (man-homer: start 0.8 -> 5.0 s, first subproblem 5.4 -> 10.0 s; docs/algorithm.md).
+  SymmetricDirichletOptions start_optimization;
   /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
   /// they happen (progress reporting); empty: not called.
   std::function<void(size_t, const JointFlattenIteration&)> on_iteration = nullptr;
@@ -124,6 +131,7 @@ struct JointFlattenResult {
   bool converged = false;           ///< the relative tolerance was met before max_iterations
   double scale_m = 1, scale_n = 1;  ///< factors applied to the disks' coordinates internally
   std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start: drift, energy, smallest face area
+  std::array<int, 2> start_steps{};               ///< Newton steps of each disk's start_optimization
 };
 
 /// Computes liftable flattenings Phi, Psi of two disks with a common boundary (Algorithm 2): mean-value Tutte
@@ -133,7 +141,9 @@ struct JointFlattenResult {
 /// angle sums below 2 pi; Phi and Psi agree exactly on corresponding boundary vertices. Outputs are in the first
 /// disk's input units (positions divided by scale_m), so that the common boundary stays common.
 /// \throw InvalidInputError if a mesh is not a disk, the boundaries differ in length or are not the boundary
-///        loops in counter-clockwise order; PipelineError if the solver or a liftability check fails.
+///        loops in counter-clockwise order; PipelineError if the start fails a liftability check (an iterate
+///        after it that fails one, or a subproblem the solver fails, ends the loop with stop_reason instead, and
+///        the last iterate that passed is the result).
 JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& n,
                                  const JointFlattenOptions& options = {});
 
@@ -144,6 +154,7 @@ struct JointFlattenProblem {
   Eigen::MatrixXd X0;           ///< #slots by 2 start (boundary slots first, in boundary order)
   std::array<Eigen::MatrixXi, 2> F;
   std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start (flattening_start)
+  std::array<int, 2> start_steps{};               ///< Newton steps of each disk's start_optimization
   double scale_m = 1, scale_n = 1;
 };
 

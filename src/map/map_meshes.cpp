@@ -22,6 +22,9 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+/// The longest stretch without a progress line inside a convex subproblem.
+constexpr double kProgressSeconds = 3;
+
 // Barycentric coordinates of p in the triangle (a, b, c) of R^3, p assumed in (or very near) its plane.
 std::array<double, 3> barycentric_3d(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                      const Eigen::Vector3d& c) {
@@ -237,7 +240,24 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   }
   progress("flatten", "start (Tutte, drifted where it squeezes) and convex subproblems (10)");
   JointFlattenOptions flatten_options = options.flatten;
+  // Inside a long subproblem, a line every few seconds: its Newton steps so far, barrier parameter, objective.
+  auto last_line = Clock::now();
+  size_t outer = 1;
+  int steps = 0;
+  flatten_options.solver.on_step = [&](const BarrierStep& step) {
+    if (options.flatten.solver.on_step) options.flatten.solver.on_step(step);
+    ++steps;
+    if (seconds_since(last_line) < kProgressSeconds) return;
+    last_line = Clock::now();
+    std::ostringstream s;
+    s << "iteration " << outer << ": " << steps << " Newton steps so far, t " << step.t << ", objective "
+      << step.objective;
+    progress("flatten", s.str());
+  };
   flatten_options.on_iteration = [&](size_t i, const JointFlattenIteration& it) {
+    outer = i + 1;
+    steps = 0;
+    last_line = Clock::now();
     if (options.flatten.on_iteration) options.flatten.on_iteration(i, it);
     std::ostringstream s;
     s << (i == 0 ? "start" : "iteration " + std::to_string(i)) << ": energy " << it.energy << ", max distortion "

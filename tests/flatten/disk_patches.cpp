@@ -126,7 +126,8 @@ TestDisk capped_tube(double length_over_girth, int around) {
       }
     }
   }
-  for (int j = 0; j < around; ++j) faces.emplace_back((nr - 1) * around + j, (nr - 1) * around + (j + 1) % around, nr * around);
+  for (int j = 0; j < around; ++j)
+    faces.emplace_back((nr - 1) * around + j, (nr - 1) * around + (j + 1) % around, nr * around);
   Eigen::MatrixXi F(static_cast<Eigen::Index>(faces.size()), 3);
   for (size_t f = 0; f < faces.size(); ++f) F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
   std::vector<int> all(faces.size());

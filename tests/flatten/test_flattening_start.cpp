@@ -63,13 +63,15 @@ TEST(flatten_start, NoExponentialSqueezeOfAnUncutTube) {
       ASSERT_EQ(s.U.row(d.boundary[i].idx), B.row(static_cast<Eigen::Index>(i))) << "L/C " << lc;
     }
     const double r = min_area_ratio(d.F, s.U);
-    std::printf("L/C %g: %d faces, smallest face %.3g of the mean, drift %g%s, energy %.4g\n", lc, static_cast<int>(d.F.rows()), r, s.chosen.drift, s.chosen.local ? " (local)" : "", s.chosen.energy);
+    std::printf("L/C %g: %d faces, smallest face %.3g of the mean, drift %g%s, energy %.4g\n", lc,
+                static_cast<int>(d.F.rows()), r, s.chosen.drift, s.chosen.local ? " (local)" : "", s.chosen.energy);
     EXPECT_GT(r, 1e-10) << "L/C " << lc;
     EXPECT_DOUBLE_EQ(r, s.chosen.min_area_ratio);
     EXPECT_DOUBLE_EQ(energy(d, s.U), s.chosen.energy);
     // Bijective onto the disk: the flattened areas add up to the polygon's.
     const Eigen::VectorXd a = signed_double_areas(d.F, s.U);
-    const double polygon = 0.5 * static_cast<double>(B.rows()) * std::sin(2 * std::numbers::pi / static_cast<double>(B.rows()));
+    const double polygon =
+        0.5 * static_cast<double>(B.rows()) * std::sin(2 * std::numbers::pi / static_cast<double>(B.rows()));
     EXPECT_NEAR(0.5 * a.sum(), polygon, 1e-9) << "L/C " << lc;
     const Eigen::VectorXd sums = angle_sums(*d.mesh, s.U);
     for (int v = 0; v < d.mesh->n_vertices(); ++v) {

@@ -1,0 +1,114 @@
+#include "flatten/symmetric_dirichlet.h"
+
+#include <gtest/gtest.h>
+#include <Eigen/LU>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "core/errors.h"
+#include "disk_patches.h"
+#include "flatten/flattening_checks.h"
+#include "flatten/flattening_start.h"
+#include "flatten/tutte.h"
+
+namespace liftmap {
+namespace {
+
+/// E(U) computed independently of the solver: J from the hat gradients, |J|^2 + |J^-1|^2 - 4 with an explicit
+/// inverse.
+double symmetric_dirichlet(const JacobianOperator& op, const Eigen::MatrixXi& F, const Eigen::MatrixXd& U) {
+  double e = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      J += U.row(F(f, k)).transpose() * op.G.block<1, 2>(f, 2 * k);
+    }
+    e += op.area(f) * (J.squaredNorm() + J.inverse().squaredNorm() - 4);
+  }
+  return e;
+}
+
+std::vector<char> boundary_flags(const testing::TestDisk& d) {
+  std::vector<char> fixed(static_cast<size_t>(d.mesh->n_vertices()), 0);
+  for (const VertexId v : d.boundary) fixed[static_cast<size_t>(v.idx)] = 1;
+  return fixed;
+}
+
+/// A planar disk: a jittered grid of the unit square.
+testing::TestDisk planar_grid(int n) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  Eigen::MatrixXd V((n + 1) * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      const bool inside = i > 0 && i < n && j > 0 && j < n;
+      V.row(i * (n + 1) + j) << (i + (inside ? jitter(rng) : 0)) / n, (j + (inside ? jitter(rng) : 0)) / n, 0;
+    }
+  }
+  Eigen::MatrixXi F(2 * n * n, 3);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = a + n + 1;
+      F.row(2 * (i * n + j)) << a, b, b + 1;
+      F.row(2 * (i * n + j) + 1) << a, b + 1, a + 1;
+    }
+  }
+  std::vector<int> all(static_cast<size_t>(F.rows()));
+  for (size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+  return testing::make_disk(V, F, all);
+}
+
+// With the boundary where the plane's rest shape has it, the minimum (energy 0) is the identity: the method must
+// find it from a smooth interior displacement of it, which only its exact gradient and Hessian do in a few steps.
+TEST(flatten_symmetric_dirichlet, RecoversTheIdentityOfAPlanarDisk) {
+  const testing::TestDisk d = planar_grid(12);
+  Eigen::MatrixXd U0 = d.V.leftCols(2);
+  for (Eigen::Index v = 0; v < U0.rows(); ++v) {
+    const double bump = std::sin(std::numbers::pi * d.V(v, 0)) * std::sin(std::numbers::pi * d.V(v, 1));
+    U0.row(v) += 0.03 * bump * Eigen::RowVector2d(1, 0.5);
+  }
+  ASSERT_GT(signed_double_areas(d.F, U0).minCoeff(), 0);
+  const JacobianOperator op = jacobian_operator(d.V, d.F);
+  ASSERT_GT(symmetric_dirichlet(op, d.F, U0), 1e-3) << "the start is already the identity";
+  const SymmetricDirichletResult r =
+      minimize_symmetric_dirichlet(op, d.F, boundary_flags(d), U0, {.max_iterations = 30, .relative_decrease = 0});
+  EXPECT_LT(r.energy, 1e-12);
+  EXPECT_LT(r.iterations, 15);
+  EXPECT_LT((r.U - d.V.leftCols(2)).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+// On a drifted start of an uncut tube: the energy falls, every face stays positive, the boundary stays, and the
+// reported energies are the energy.
+TEST(flatten_symmetric_dirichlet, LowersATubesStartWithoutFlipping) {
+  const testing::TestDisk d = testing::capped_tube(6);
+  Eigen::MatrixXd B(static_cast<Eigen::Index>(d.boundary.size()), 2);
+  for (Eigen::Index i = 0; i < B.rows(); ++i) {
+    const double a = 2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(B.rows());
+    B.row(i) << std::cos(a), std::sin(a);
+  }
+  // Area pi, as in joint_flatten.
+  const JacobianOperator rest = jacobian_operator(d.V, d.F);
+  const Eigen::MatrixXd V = d.V * std::sqrt(std::numbers::pi / rest.area.sum());
+  const JacobianOperator op = jacobian_operator(V, d.F);
+  const FlatteningStart s = flattening_start(*d.mesh, V, d.boundary, B,
+                                             [&](const Eigen::MatrixXd& U) { return symmetric_dirichlet(op, d.F, U); });
+  ASSERT_TRUE(s.squeezed);
+  const SymmetricDirichletResult r = minimize_symmetric_dirichlet(op, d.F, boundary_flags(d), s.U);
+  EXPECT_NEAR(r.energy_start, symmetric_dirichlet(op, d.F, s.U), 1e-9 * r.energy_start);
+  EXPECT_NEAR(r.energy, symmetric_dirichlet(op, d.F, r.U), 1e-9 * r.energy);
+  EXPECT_LT(r.energy, 0.25 * r.energy_start);
+  EXPECT_GT(signed_double_areas(d.F, r.U).minCoeff(), 0);
+  for (const VertexId v : d.boundary) ASSERT_EQ(r.U.row(v.idx), s.U.row(v.idx));
+}
+
+TEST(flatten_symmetric_dirichlet, RejectsAFlippedStart) {
+  const testing::TestDisk d = planar_grid(4);
+  Eigen::MatrixXd U = d.V.leftCols(2);
+  U.col(0) *= -1;
+  EXPECT_THROW(minimize_symmetric_dirichlet(jacobian_operator(d.V, d.F), d.F, boundary_flags(d), U), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace liftmap
