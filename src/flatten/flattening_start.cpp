@@ -30,19 +30,23 @@ namespace {
 /// Per vertex, how much plain Tutte squeezed the faces around it: c_v in [0, 1] rises from 0 where the faces'
 /// share of the planar area is above 1e-2 of their share of the surface's area to 1 where it is below 1e-5
 /// (or the faces are flipped or degenerate).
-std::vector<double> squeeze(const Mesh& mesh, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                            const Eigen::MatrixXd& U) {
+/// Per face, its share of the planar area over its share of the surface's (<= 0: flipped or degenerate).
+Eigen::VectorXd relative_areas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& U) {
   const Eigen::VectorXd a2 = signed_double_areas(F, U);
   Eigen::VectorXd a3(F.rows());
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const Eigen::Vector3d e1 = V.row(F(f, 1)) - V.row(F(f, 0)), e2 = V.row(F(f, 2)) - V.row(F(f, 0));
     a3(f) = e1.cross(e2).norm();
   }
-  const double norm = a3.sum() / a2.sum();
+  return (a2.array() / a3.array()) * (a3.sum() / a2.sum());
+}
+
+/// Per vertex, how much the faces around it are squeezed: c_v in [0, 1] rises from 0 where every face's relative
+/// area is above 1e-2 to 1 where one is below 1e-5 (or flipped or degenerate).
+std::vector<double> squeeze(const Mesh& mesh, const Eigen::MatrixXi& F, const Eigen::VectorXd& relative) {
   std::vector<double> c(static_cast<size_t>(mesh.n_vertices()), 0.0);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const double ratio = a2(f) * norm / a3(f);
-    const double shrink = ratio > 0 ? -std::log10(ratio) : 300.0;
+    const double shrink = relative(f) > 0 ? -std::log10(relative(f)) : 300.0;
     const double cf = std::clamp((shrink - 2) / 3, 0.0, 1.0);
     for (int k = 0; k < 3; ++k) c[static_cast<size_t>(F(f, k))] = std::max(c[static_cast<size_t>(F(f, k))], cf);
   }
@@ -71,9 +75,10 @@ FlatteningStart flattening_start(const Mesh& mesh, const Eigen::MatrixXd& V, con
     }
   };
   Eigen::MatrixXd plain = tutte_embedding(mesh, V, boundary, B);
-  const std::vector<double> local = squeeze(mesh, V, F, plain);
+  const Eigen::VectorXd relative = relative_areas(V, F, plain);
+  const std::vector<double> local = squeeze(mesh, F, relative);
   consider(std::move(plain), 0, false);
-  if (best.chosen.min_area_ratio >= options.min_area_ratio) return best;
+  if (relative.minCoeff() >= options.min_relative_area) return best;
   best.squeezed = true;
   std::vector<TutteWeights> tried;
   for (const double d : options.drifts) {

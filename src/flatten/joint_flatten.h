@@ -86,9 +86,9 @@ struct JointFlattenOptions {
   SubproblemSolver method = SubproblemSolver::kAuto;
   /// A disk whose plain Tutte start squeezed a face (FlatteningStart::squeezed) has its drifted start lowered in
   /// the symmetric Dirichlet energy, boundary fixed, never flipping a face (minimize_symmetric_dirichlet);
-  /// max_iterations 0: off. On the L/C = 8 tentacle pair: start max distortion 4.7e4 -> 47, first subproblem
-  /// 47 -> 29 Newton steps, energy after 10 outer iterations 14.52 -> 14.15. On starts plain Tutte did not squeeze
-  /// it cost more than it saved (man-homer: start 0.8 -> 5.0 s, first subproblem 5.4 -> 10.0 s; docs/algorithm.md).
+  /// max_iterations 0: off. L/C = 8 tentacle pair: start max distortion 4.7e4 -> 47, first subproblem 47 -> 29
+  /// Newton steps, energy after 10 outer iterations 14.52 -> 14.15. Applied to unsqueezed starts too, it ended
+  /// fandisk-bunny higher (6.54676 against 6.54573) and 23% slower (docs/algorithm.md).
   SymmetricDirichletOptions start_optimization;
   /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
   /// they happen (progress reporting); empty: not called.

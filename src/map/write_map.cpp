@@ -91,11 +91,13 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                   {"seconds", i.seconds}});
   }
   nlohmann::json start = nlohmann::json::array();
-  for (const auto& s : map.flattening.start) {
+  for (size_t k = 0; k < 2; ++k) {
+    const auto& s = map.flattening.start[k];
     start.push_back({{"drift", s.drift},
                      {"drift_where_squeezed", s.local},
-                     {"energy", s.energy},
-                     {"min_area_ratio", s.min_area_ratio}});
+                     {"energy_before_optimization", s.energy},
+                     {"min_area_ratio_before_optimization", s.min_area_ratio},
+                     {"optimization_steps", map.flattening.start_steps[k]}});
   }
   j["flatten"] = {{"start", start},
                   {"iterations", it},
