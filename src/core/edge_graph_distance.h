@@ -31,7 +31,8 @@ void edge_graph_search(const Mesh& mesh, const std::vector<int>& sources, Length
     queue.emplace(0.0, s);
   }
   while (!queue.empty()) {
-    const auto [d, u] = queue.top();
+    const double d = queue.top().first;  // no structured binding: lambdas capture it only from clang 16
+    const int u = queue.top().second;
     queue.pop();
     if (d > dist[static_cast<size_t>(u)]) continue;
     mesh.for_each_outgoing(VertexId(u), [&](HalfedgeId h) {

@@ -70,11 +70,11 @@ void face_derivatives(const Vec4& j, Vec4& grad, Mat4& hess) {
 
 /// The largest a in (0, 1] such that det(J + t dJ) > 0 for all t in [0, a] on every face, times 0.8 if < 1/0.8.
 double flip_free_step(const JacobianOperator& op, const Eigen::MatrixXi& F, const Eigen::MatrixXd& U,
-                      const Eigen::MatrixXd& dU) {
+                      const Eigen::MatrixXd& step_u) {
   double a = 1 / 0.8;
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const Mat46 D = jacobian_map(op.G.row(f));
-    const Vec4 j = D * corners(F, U, f), dj = D * corners(F, dU, f);
+    const Vec4 j = D * corners(F, U, f), dj = D * corners(F, step_u, f);
     // det(j + t dj) = c0 + c1 t + c2 t^2
     const double c0 = det(j), c2 = det(dj);
     const double c1 = j(0) * dj(3) + dj(0) * j(3) - j(1) * dj(2) - dj(1) * j(2);
@@ -146,19 +146,19 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const JacobianOperator& op
     if (!cholesky.analyzed()) cholesky.analyze(H);
     if (!cholesky.factorize(H)) break;
     const Eigen::VectorXd dx = cholesky.solve(-g);
-    Eigen::MatrixXd dU = Eigen::MatrixXd::Zero(nv, 2);
+    Eigen::MatrixXd step_u = Eigen::MatrixXd::Zero(nv, 2);
     for (Eigen::Index v = 0; v < nv; ++v) {
       const int r = dof[static_cast<size_t>(v)];
-      if (r >= 0) dU.row(v) << dx(2 * r), dx(2 * r + 1);
+      if (r >= 0) step_u.row(v) << dx(2 * r), dx(2 * r + 1);
     }
     // Flip-free, then Armijo.
     const double slope = g.dot(dx);
     if (!(slope < 0)) break;
-    double step = std::min(1.0, flip_free_step(op, F, res.U, dU));
+    double step = std::min(1.0, flip_free_step(op, F, res.U, step_u));
     double e = std::numeric_limits<double>::infinity();
     Eigen::MatrixXd trial;
     for (int halvings = 0; halvings < 40; ++halvings, step *= 0.5) {
-      trial = res.U + step * dU;
+      trial = res.U + step * step_u;
       e = energy(op, F, trial);
       if (e <= res.energy + 1e-4 * step * slope) break;
     }
