@@ -304,8 +304,9 @@ int run_map(const PairJob& job) {
     return liftmap::kExitPipeline;
   }
   if (!job.quiet) {
-    std::fprintf(stderr, "liftmap: map written to %s (total %.2f s; distortion of f: mean %.3f, max %.3f)\n",
-                 job.out_dir.c_str(), map.seconds.total, map.distortion_f.mean, map.distortion_f.max);
+    std::fprintf(stderr, "liftmap: map written to %s (total %.2f s; distortion of f: mean %.3f, max %.3f)%s\n",
+                 job.out_dir.c_str(), map.seconds.total, map.distortion_f.mean, map.distortion_f.max,
+                 map.flattening.stop_reason.empty() ? "" : "; the flattening stopped early (report.json: stop_reason)");
   }
   return liftmap::kExitOk;
 }

@@ -23,13 +23,6 @@ double min_area_ratio(const Eigen::MatrixXi& F, const Eigen::MatrixXd& U) {
   return a.minCoeff() / (a.sum() / static_cast<double>(a.size()));
 }
 
-}  // namespace
-
-namespace {
-
-/// Per vertex, how much plain Tutte squeezed the faces around it: c_v in [0, 1] rises from 0 where the faces'
-/// share of the planar area is above 1e-2 of their share of the surface's area to 1 where it is below 1e-5
-/// (or the faces are flipped or degenerate).
 /// Per face, its share of the planar area over its share of the surface's (<= 0: flipped or degenerate).
 Eigen::VectorXd relative_areas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& U) {
   const Eigen::VectorXd a2 = signed_double_areas(F, U);
@@ -58,7 +51,7 @@ std::vector<double> squeeze(const Mesh& mesh, const Eigen::MatrixXi& F, const Ei
 FlatteningStart flattening_start(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& boundary,
                                  const Eigen::MatrixXd& B, const std::function<double(const Eigen::MatrixXd&)>& energy,
                                  const FlatteningStartOptions& options) {
-  TutteWeights weights{.depth = edge_graph_distances(mesh, V, boundary)};
+  const std::vector<double> depth = edge_graph_distances(mesh, V, boundary);
   const Eigen::MatrixXi F = mesh.faces();
   FlatteningStart best;
   best.chosen.energy = std::numeric_limits<double>::infinity();
@@ -82,8 +75,8 @@ FlatteningStart flattening_start(const Mesh& mesh, const Eigen::MatrixXd& V, con
   best.squeezed = true;
   std::vector<TutteWeights> tried;
   for (const double d : options.drifts) {
-    tried.push_back({.depth = weights.depth, .drift = d, .drift_scale = local});
-    tried.push_back({.depth = weights.depth, .drift = d, .drift_scale = {}});
+    tried.push_back({.depth = depth, .drift = d, .drift_scale = local});
+    tried.push_back({.depth = depth, .drift = d, .drift_scale = {}});
   }
   std::vector<Eigen::MatrixXd> embeddings = tutte_embeddings(mesh, V, boundary, B, tried);
   for (size_t i = 0; i < tried.size(); ++i) {
