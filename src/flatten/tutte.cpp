@@ -27,11 +27,10 @@ std::array<Eigen::Vector2d, 3> face_layout(const Eigen::MatrixXd& V, const std::
   return {Eigen::Vector2d::Zero(), Eigen::Vector2d(l1, 0), Eigen::Vector2d(e2.dot(u), e2.dot(w))};
 }
 
-/// The weight of edge (i, other) in vertex i's convex combination, given the mean-value part.
-double edge_weight(const Eigen::MatrixXd& V, const TutteWeights& weights, int i, int other, double mean_value) {
+/// The weight of edge (i, other) of length `length` in vertex i's convex combination, given its mean-value part.
+double edge_weight(const TutteWeights& weights, int i, int other, double length, double mean_value) {
   if (weights.depth.empty() || weights.drift == 0) return mean_value;
-  const double slope = (weights.depth[static_cast<size_t>(i)] - weights.depth[static_cast<size_t>(other)]) /
-                       (V.row(i) - V.row(other)).norm();
+  const double slope = (weights.depth[static_cast<size_t>(i)] - weights.depth[static_cast<size_t>(other)]) / length;
   const double local = weights.drift_scale.empty() ? 1.0 : weights.drift_scale[static_cast<size_t>(i)];
   return mean_value * std::exp(local * weights.drift * std::clamp(slope, -1.0, 1.0));
 }
@@ -92,6 +91,7 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
   // the two faces beside edge ij. Each face corner contributes tan(angle/2) / |edge| to its two edges.
   struct Corner {
     int row, other;
+    double length;  // |x_row - x_other|, from the face's layout (isometric)
     double mean_value;
   };
   std::vector<Corner> corners;
@@ -104,8 +104,8 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
       const Eigen::Vector2d ej = q[(c + 1) % 3] - q[c];
       const Eigen::Vector2d ek = q[(c + 2) % 3] - q[c];
       const double t = std::tan(0.5 * std::atan2(std::abs(ej.x() * ek.y() - ej.y() * ek.x()), ej.dot(ek)));
-      corners.push_back({fv[c].idx, fv[(c + 1) % 3].idx, t / ej.norm()});
-      corners.push_back({fv[c].idx, fv[(c + 2) % 3].idx, t / ek.norm()});
+      corners.push_back({fv[c].idx, fv[(c + 1) % 3].idx, ej.norm(), t / ej.norm()});
+      corners.push_back({fv[c].idx, fv[(c + 2) % 3].idx, ek.norm(), t / ek.norm()});
     }
   }
   std::vector<Eigen::MatrixXd> result(weights.size(), U);
@@ -118,7 +118,7 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, 2);
     for (const Corner& c : corners) {
       const int row = unknown[static_cast<size_t>(c.row)];
-      const double w = edge_weight(V, weights[s], c.row, c.other, c.mean_value);
+      const double w = edge_weight(weights[s], c.row, c.other, c.length, c.mean_value);
       triplets.emplace_back(row, row, w);
       const int col = unknown[static_cast<size_t>(c.other)];
       if (col >= 0) {
