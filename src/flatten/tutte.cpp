@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseLU>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <string>
 
@@ -12,20 +11,6 @@
 namespace liftmap {
 
 namespace {
-
-/// Face f laid out in the plane, isometric to the 3D triangle.
-std::array<Eigen::Vector2d, 3> face_layout(const Eigen::MatrixXd& V, const std::array<VertexId, 3>& fv, int f) {
-  const Eigen::Vector3d e1 = V.row(fv[1].idx) - V.row(fv[0].idx);
-  const Eigen::Vector3d e2 = V.row(fv[2].idx) - V.row(fv[0].idx);
-  const double l1 = e1.norm();
-  const Eigen::Vector3d n = e1.cross(e2);
-  if (!(l1 > 0) || !(e2.norm() > 0) || !(n.norm() > 0)) {
-    throw InvalidInputError("tutte_embedding: face " + std::to_string(f) + " is degenerate (zero area)");
-  }
-  const Eigen::Vector3d u = e1 / l1;
-  const Eigen::Vector3d w = n.normalized().cross(u);
-  return {Eigen::Vector2d::Zero(), Eigen::Vector2d(l1, 0), Eigen::Vector2d(e2.dot(u), e2.dot(w))};
-}
 
 /// The weight of edge (i, other) of length `length` in vertex i's convex combination, given its mean-value part.
 double edge_weight(const TutteWeights& weights, int i, int other, double length, double mean_value) {
@@ -91,21 +76,25 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
   // the two faces beside edge ij. Each face corner contributes tan(angle/2) / |edge| to its two edges.
   struct Corner {
     int row, other;
-    double length;  // |x_row - x_other|, from the face's layout (isometric)
+    double length;  // |x_row - x_other|
     double mean_value;
   };
   std::vector<Corner> corners;
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const auto fv = mesh.face_vertices(FaceId(f));
-    const std::array<Eigen::Vector2d, 3> q = face_layout(V, fv, f);
     for (int c = 0; c < 3; ++c) {
       const int row = unknown[static_cast<size_t>(fv[c].idx)];
       if (row < 0) continue;
-      const Eigen::Vector2d ej = q[(c + 1) % 3] - q[c];
-      const Eigen::Vector2d ek = q[(c + 2) % 3] - q[c];
-      const double t = std::tan(0.5 * std::atan2(std::abs(ej.x() * ek.y() - ej.y() * ek.x()), ej.dot(ek)));
-      corners.push_back({fv[c].idx, fv[(c + 1) % 3].idx, ej.norm(), t / ej.norm()});
-      corners.push_back({fv[c].idx, fv[(c + 2) % 3].idx, ek.norm(), t / ek.norm()});
+      const int i = fv[c].idx, j = fv[(c + 1) % 3].idx, k = fv[(c + 2) % 3].idx;
+      const Eigen::Vector3d ej = V.row(j) - V.row(i);
+      const Eigen::Vector3d ek = V.row(k) - V.row(i);
+      const double lj = ej.norm(), lk = ek.norm();
+      if (!(lj > 0) || !(lk > 0)) {
+        throw InvalidInputError("tutte_embedding: face " + std::to_string(f) + " has a zero-length edge");
+      }
+      const double t = std::tan(0.5 * std::atan2(ej.cross(ek).norm(), ej.dot(ek)));
+      corners.push_back({i, j, lj, t / lj});
+      corners.push_back({i, k, lk, t / lk});
     }
   }
   std::vector<Eigen::MatrixXd> result(weights.size(), U);
