@@ -1,5 +1,7 @@
 #include "cut/boundary_correspondence.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -26,11 +28,24 @@ double inverse_cubic_reparameterisation(double y, double l, double L) {
 
 namespace {
 
-std::vector<double> arc_lengths(const RefinedMesh& r, const std::vector<int>& path) {
+/// The square root of the surface area of a refined mesh: the unit in which both sides' arc lengths are compared.
+double length_unit(const RefinedMesh& r) {
+  double area = 0;
+  for (const auto& f : r.faces) {
+    const Eigen::Vector3d& p0 = r.positions[static_cast<size_t>(f[0])];
+    area +=
+        0.5 * (r.positions[static_cast<size_t>(f[1])] - p0).cross(r.positions[static_cast<size_t>(f[2])] - p0).norm();
+  }
+  return std::sqrt(area);
+}
+
+/// Arc lengths of the path's vertices from its first, in units of `unit`.
+std::vector<double> arc_lengths(const RefinedMesh& r, const std::vector<int>& path, double unit) {
   std::vector<double> s{0.0};
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     s.push_back(s.back() +
-                (r.positions[static_cast<size_t>(path[i + 1])] - r.positions[static_cast<size_t>(path[i])]).norm());
+                (r.positions[static_cast<size_t>(path[i + 1])] - r.positions[static_cast<size_t>(path[i])]).norm() /
+                    unit);
   }
   return s;
 }
@@ -82,9 +97,10 @@ void apply(RefinedMesh& r, const Mesh& input, std::vector<std::vector<int>>& pat
 void equalize_paths(RefinedMesh& a, const Mesh& input_a, std::vector<std::vector<int>>& paths_a, RefinedMesh& b,
                     const Mesh& input_b, std::vector<std::vector<int>>& paths_b, double snap) {
   std::vector<Insertions> ins_a(paths_a.size()), ins_b(paths_b.size());
+  const double unit_a = length_unit(a), unit_b = length_unit(b);
   for (size_t e = 0; e < paths_a.size(); ++e) {
-    const auto sa = arc_lengths(a, paths_a[e]);
-    const auto sb = arc_lengths(b, paths_b[e]);
+    const auto sa = arc_lengths(a, paths_a[e], unit_a);
+    const auto sb = arc_lengths(b, paths_b[e], unit_b);
     ins_a[e].resize(sa.size() - 1);
     ins_b[e].resize(sb.size() - 1);
     const double la = sa.back(), lb = sb.back();

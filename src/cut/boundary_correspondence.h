@@ -24,7 +24,9 @@ double inverse_cubic_reparameterisation(double y, double l, double L);
 /// vertex j of one corresponds to vertex j of the other: the vertices of each path are mapped onto the other by
 /// the cubic reparameterisation and inserted there, except where they come within `snap` of a local edge length
 /// of an existing vertex, which is then paired with them instead (no sliver edges). The map is symmetric under
-/// reversing both paths, so both sides of a cut path get the same correspondence.
+/// reversing both paths, so both sides of a cut path get the same correspondence. Arc lengths are measured in units
+/// of the square root of each mesh's area (the flattening's normalisation), so that a mesh and a scaled copy of
+/// it get the identity correspondence.
 /// \param a, b refined meshes containing the paths, refined in place
 /// \param paths_a, paths_b per tree edge, refined vertex ids of the path (same end landmarks on both meshes),
 ///        updated in place
