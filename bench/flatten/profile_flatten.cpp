@@ -7,7 +7,7 @@
 // JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap); PROFILE_START_GAP_FRACTION=x sets
 // JointFlattenOptions::start_gap_fraction (0: every subproblem starts at the usual barrier parameter);
 // PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap; PROFILE_ISOTROPIC=0 turns off
-// BarrierOptions::isotropic_anticonformal_curvature; PROFILE_DELAUNAY_FLIPS=0 turns off CutOptions::delaunay_flips;
+// BarrierOptions::isotropic_anticonformal_curvature; PROFILE_REMESH=0 turns off CutOptions::remesh;
 // PROFILE_START_STEPS=n sets JointFlattenOptions::start_optimization.max_iterations (0: off).
 
 #include <chrono>
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   const Landmarks L = read_landmarks(argv[3], static_cast<int>(A.V.rows()), static_cast<int>(B.V.rows()));
   auto t0 = std::chrono::steady_clock::now();
   CutOptions cut_options;
-  if (const char* g = std::getenv("PROFILE_DELAUNAY_FLIPS")) cut_options.delaunay_flips = std::atoi(g) != 0;
+  if (const char* g = std::getenv("PROFILE_REMESH")) cut_options.remesh = std::atoi(g) != 0;
   const CutResult cut = cut_meshes(A.V, A.F, B.V, B.F, L.a, L.b, cut_options);
   const double cut_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const Mesh disk_a(cut.a.F_cut, static_cast<int>(cut.a.cut_to_refined.size()));

@@ -70,4 +70,27 @@ SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p) {
   return SurfacePoint::in_face(f, bary);
 }
 
+std::array<double, 3> barycentric_in_face(const Mesh& input, const SurfacePoint& p, FaceId f) {
+  std::array<double, 3> b{0, 0, 0};
+  const auto fh = input.face_halfedges(f);
+  switch (p.kind) {
+    case SurfacePoint::Kind::kVertex:
+      for (int k = 0; k < 3; ++k) {
+        if (input.tail(fh[k]) == p.vertex) b[k] = 1.0;
+      }
+      return b;
+    case SurfacePoint::Kind::kEdge:
+      for (int k = 0; k < 3; ++k) {
+        if (Mesh::edge(fh[k]) != p.edge) continue;
+        const bool same = fh[k] == Mesh::halfedge(p.edge);
+        b[k] = same ? 1.0 - p.t : p.t;
+        b[(k + 1) % 3] = same ? p.t : 1.0 - p.t;
+      }
+      return b;
+    case SurfacePoint::Kind::kFace:
+      return p.bary;
+  }
+  return b;
+}
+
 }  // namespace liftmap

@@ -32,4 +32,9 @@ Eigen::RowVectorXd interpolate(const Mesh& mesh, const Eigen::MatrixXd& X, const
 /// \pre the element of `p` has at least one incident face.
 SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p);
 
+/// Barycentric coordinates of `p` in face `f` of `mesh`, in the order of `face_vertices(f)`: exact zeros for the
+/// corners a vertex or edge point does not touch.
+/// \pre `f` contains `p` (a face around the vertex, a face of the edge, or the face itself).
+std::array<double, 3> barycentric_in_face(const Mesh& mesh, const SurfacePoint& p, FaceId f);
+
 }  // namespace liftmap

@@ -12,6 +12,7 @@
 #include "cut/cut_tree.h"
 #include "cut/geodesic_distance.h"
 #include "cut/refined_mesh.h"
+#include "cut/remesh_along_paths.h"
 #include "cut/trace_cut_paths.h"
 
 namespace liftmap {
@@ -113,9 +114,9 @@ CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   trace.shorten = options.geodesic_paths;
   TracedPaths traced = trace_cut_paths(ra, mesh_a, la, rb, mesh_b, lb, result.tree, trace);
   equalize_paths(ra, mesh_a, traced.paths_a, rb, mesh_b, traced.paths_b, options.snap);
-  if (options.delaunay_flips) {
-    improve_refined_triangles(ra, traced.paths_a);
-    improve_refined_triangles(rb, traced.paths_b);
+  if (options.remesh) {
+    remesh_along_paths(ra, mesh_a, traced.paths_a);
+    remesh_along_paths(rb, mesh_b, traced.paths_b);
   }
 
   CutDisk disk_a, disk_b;

@@ -21,12 +21,11 @@ struct CutOptions {
   bool geodesic_paths = true;  ///< search paths across faces and straighten them toward geodesics; if false,
                                ///< paths are shortest edge paths (cheaper, about 5-15% longer)
   double snap = 0.1;           ///< boundary vertices closer than this fraction of an edge are paired, not inserted
-  /// Flip the refined triangulation towards Delaunay inside each input face (improve_refined_triangles) after the
-  /// paths are in place. The cut's repeated re-triangulations leave caps (angles near 180 degrees) along the
-  /// paths: man-homer's disks had 1133 + 1436 faces with an angle above 170 degrees, 404 + 196 after the flips.
-  /// Caps limited the flattening's Newton steps (a face that would flip at twice the accepted step was a cap of
-  /// area 1e-11 to 1e-8 in most of the damped steps traced) and carried the largest distortions.
-  bool delaunay_flips = true;
+  /// Re-triangulate every input face that the paths cross as a constrained Delaunay triangulation of its corners,
+  /// path vertices and path segments (remesh_along_paths), dropping the vertices of intermediate paths. If false,
+  /// the refined mesh keeps the ear-clipped triangulation of the repeated insertions (caps and slivers along the
+  /// paths, and different connectivity on a mesh and its moved copy).
+  bool remesh = true;
 };
 
 /// One mesh after cutting.

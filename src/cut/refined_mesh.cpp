@@ -18,30 +18,6 @@ namespace liftmap {
 
 namespace {
 
-/// Barycentric coordinates of the input-mesh point `p` in the input face `f`, which must contain it.
-std::array<double, 3> bary_in_face(const Mesh& input, const SurfacePoint& p, FaceId f) {
-  std::array<double, 3> b{0, 0, 0};
-  const auto fh = input.face_halfedges(f);
-  switch (p.kind) {
-    case SurfacePoint::Kind::kVertex:
-      for (int k = 0; k < 3; ++k) {
-        if (input.tail(fh[k]) == p.vertex) b[k] = 1.0;
-      }
-      return b;
-    case SurfacePoint::Kind::kEdge:
-      for (int k = 0; k < 3; ++k) {
-        if (Mesh::edge(fh[k]) != p.edge) continue;
-        const bool same = fh[k] == Mesh::halfedge(p.edge);
-        b[k] = same ? 1.0 - p.t : p.t;
-        b[(k + 1) % 3] = same ? p.t : 1.0 - p.t;
-      }
-      return b;
-    case SurfacePoint::Kind::kFace:
-      return p.bary;
-  }
-  return b;
-}
-
 /// The most specific SurfacePoint for barycentric coordinates `b` in input face `f`. Coordinates that are
 /// exactly zero stay exactly zero through interpolation, so vertices and edges are recognised exactly.
 SurfacePoint canonical_point(const Mesh& input, FaceId f, std::array<double, 3> b) {
@@ -180,8 +156,8 @@ void split_refined_mesh(RefinedMesh& refined, const Mesh& input, const std::vect
     // Provenance: both ends lie on the input face of a refined face at this edge.
     HalfedgeId hf = mesh.is_boundary(h) ? Mesh::twin(h) : h;
     const FaceId f_in(refined.input_face[static_cast<size_t>(mesh.face(hf).idx)]);
-    const auto ba = bary_in_face(input, refined.on_input[static_cast<size_t>(s.a)], f_in);
-    const auto bb = bary_in_face(input, refined.on_input[static_cast<size_t>(s.b)], f_in);
+    const auto ba = barycentric_in_face(input, refined.on_input[static_cast<size_t>(s.a)], f_in);
+    const auto bb = barycentric_in_face(input, refined.on_input[static_cast<size_t>(s.b)], f_in);
     std::array<double, 3> b{};
     for (int k = 0; k < 3; ++k)
       b[static_cast<size_t>(k)] = (1.0 - s.t) * ba[static_cast<size_t>(k)] + s.t * bb[static_cast<size_t>(k)];
@@ -341,97 +317,6 @@ std::vector<int> insert_polyline(RefinedMesh& refined, const Mesh& input, const 
   if (all_edges) return ids;
   split_refined_mesh(refined, input, splits, chords);
   return ids;
-}
-
-namespace {
-
-std::uint64_t directed_key(int u, int w) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(w);
-}
-
-/// The angle at `p` of the triangle (p, a, b).
-double corner_angle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d u = a - p, v = b - p;
-  return std::atan2(u.cross(v).norm(), u.dot(v));
-}
-
-}  // namespace
-
-int improve_refined_triangles(RefinedMesh& refined, const std::vector<std::vector<int>>& paths) {
-  auto& faces = refined.faces;
-  const auto& pos = refined.positions;
-  std::unordered_set<std::uint64_t> fixed;  // undirected path edges, as directed keys both ways
-  std::vector<char> on_path(refined.positions.size(), 0);
-  for (const auto& p : paths) {
-    for (size_t i = 0; i + 1 < p.size(); ++i) {
-      fixed.insert(directed_key(p[i], p[i + 1]));
-      fixed.insert(directed_key(p[i + 1], p[i]));
-    }
-    for (const int v : p) on_path[static_cast<size_t>(v)] = 1;
-  }
-  std::unordered_map<std::uint64_t, int> owner;  // directed edge -> the face that holds it
-  owner.reserve(faces.size() * 3);
-  for (size_t f = 0; f < faces.size(); ++f) {
-    for (int k = 0; k < 3; ++k) owner[directed_key(faces[f][k], faces[f][(k + 1) % 3])] = static_cast<int>(f);
-  }
-  std::vector<std::array<int, 2>> queue;
-  for (size_t f = 0; f < faces.size(); ++f) {
-    for (int k = 0; k < 3; ++k) queue.push_back({faces[f][k], faces[f][(k + 1) % 3]});
-  }
-  int flips = 0;
-  const size_t max_work = 50 * faces.size();
-  for (size_t work = 0; !queue.empty() && work < max_work; ++work) {
-    const auto [u, w] = queue.back();
-    queue.pop_back();
-    if (fixed.count(directed_key(u, w))) continue;
-    const auto i1 = owner.find(directed_key(u, w)), i2 = owner.find(directed_key(w, u));
-    if (i1 == owner.end() || i2 == owner.end()) continue;
-    const int f1 = i1->second, f2 = i2->second;
-    if (refined.input_face[static_cast<size_t>(f1)] != refined.input_face[static_cast<size_t>(f2)]) continue;
-    // f1 = (u, w, x), f2 = (w, u, y), counter-clockwise; the quad u, y, w, x.
-    auto third = [&](int f, int a, int b) {
-      for (const int v : faces[static_cast<size_t>(f)]) {
-        if (v != a && v != b) return v;
-      }
-      return -1;
-    };
-    const int x = third(f1, u, w), y = third(f2, u, w);
-    if (x < 0 || y < 0 || x == y || owner.count(directed_key(x, y)) || owner.count(directed_key(y, x))) continue;
-    // No new edge between two path vertices: after the cut both are boundary vertices of the disk, and a face whose
-    // three vertices lie on the boundary is squeezed flat by the Tutte start (the circle's chord). On
-    // sphere-ellipsoid at 200k faces per mesh such faces raised the start's max distortion from 537 to 5034 and the
-    // first subproblem ran out of Newton steps.
-    if (on_path[static_cast<size_t>(x)] && on_path[static_cast<size_t>(y)]) continue;
-    const Eigen::Vector3d &pu = pos[static_cast<size_t>(u)], &pw = pos[static_cast<size_t>(w)],
-                          &px = pos[static_cast<size_t>(x)], &py = pos[static_cast<size_t>(y)];
-    // Delaunay: flip if the angles opposite (u, w) sum to more than pi (with a margin against cycling on
-    // cocircular points).
-    if (corner_angle(px, pu, pw) + corner_angle(py, pw, pu) <= std::numbers::pi * (1 + 1e-9)) continue;
-    // The quad must be strictly convex: both new triangles oriented like the old ones.
-    const Eigen::Vector3d normal = (pw - pu).cross(px - pu) + (pu - pw).cross(py - pw);
-    const Eigen::Vector3d n1 = (py - pu).cross(px - pu), n2 = (pw - py).cross(px - py);
-    const double scale = normal.norm();
-    if (!(n1.dot(normal) > 1e-12 * scale * scale) || !(n2.dot(normal) > 1e-12 * scale * scale)) continue;
-    for (const int f : {f1, f2}) {
-      for (int k = 0; k < 3; ++k) {
-        owner.erase(directed_key(faces[static_cast<size_t>(f)][k], faces[static_cast<size_t>(f)][(k + 1) % 3]));
-      }
-    }
-    faces[static_cast<size_t>(f1)] = {u, y, x};
-    faces[static_cast<size_t>(f2)] = {y, w, x};
-    for (const int f : {f1, f2}) {
-      for (int k = 0; k < 3; ++k) {
-        owner[directed_key(faces[static_cast<size_t>(f)][k], faces[static_cast<size_t>(f)][(k + 1) % 3])] = f;
-      }
-    }
-    queue.push_back({u, y});
-    queue.push_back({y, w});
-    queue.push_back({w, x});
-    queue.push_back({x, u});
-    ++flips;
-  }
-  if (flips > 0) refined.mesh = Mesh(refined.face_matrix(), refined.n_vertices());
-  return flips;
 }
 
 }  // namespace liftmap

@@ -62,12 +62,4 @@ std::vector<int> insert_polyline(RefinedMesh& refined, const Mesh& input, const 
 /// The halfedge from `a` to `b` of `mesh`, invalid if there is no such edge.
 HalfedgeId find_halfedge(const Mesh& mesh, VertexId a, VertexId b);
 
-/// Flips edges of the refined mesh towards the Delaunay triangulation of each input face, keeping every edge of
-/// `paths` (vertex sequences) and every edge whose two faces lie in different input faces: only flips inside one
-/// (planar) input face, so the refined surface, its vertices and each face's input face are unchanged. The
-/// repeated re-triangulations of the cut (insert_polyline, equalize_paths) otherwise leave caps (an angle near
-/// 180 degrees) along the paths, whose flattenings flip at the slightest move of their middle vertex.
-/// \return the number of flips made
-int improve_refined_triangles(RefinedMesh& refined, const std::vector<std::vector<int>>& paths);
-
 }  // namespace liftmap

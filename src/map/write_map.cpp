@@ -66,7 +66,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"isotropic_anticonformal_curvature", options.flatten.solver.isotropic_anticonformal_curvature},
       {"max_iterations", options.flatten.max_iterations},
       {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},
-      {"delaunay_flips", options.cut.delaunay_flips},
+      {"remesh", options.cut.remesh},
   };
   j["cut"] = {
       {"tree_edges", map.cut.tree},

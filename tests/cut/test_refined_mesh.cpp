@@ -1,4 +1,5 @@
 #include "cut/refined_mesh.h"
+#include "cut/remesh_along_paths.h"
 
 #include <gtest/gtest.h>
 
@@ -86,10 +87,11 @@ double largest_angle(const RefinedMesh& r, const std::array<int, 3>& f) {
   return largest;
 }
 
-// Splits near the corners of input faces, joined by chords (as cut paths near vertices make them), leave caps; the
-// Delaunay flips inside each input face remove them and keep the surface: the same vertices, every face inside its
-// input face, the same area, every chord still an edge, and no edge left that the Delaunay criterion would flip.
-TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
+// Splits near the corners of input faces, joined by chords (as cut paths near vertices make them), leave caps and
+// vertices on no path; the constrained Delaunay re-triangulation of each input face removes both and keeps the
+// surface: the input vertices and the path vertices only, every face inside its input face, the same area, every
+// path segment still an edge, every edge inside one input face locally Delaunay unless it is a path segment.
+TEST(cut_refined_mesh, RemeshAlongPathsRemovesCapsAndKeepsTheSurface) {
   const auto in = test::load("hand");
   const Mesh input(in.F, static_cast<int>(in.V.rows()));
   RefinedMesh r = make_refined_mesh(input, in.V);
@@ -106,28 +108,44 @@ TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
     });
     for (const auto& c : chords) paths.push_back({c[0], c[1]});
   }
-  // Chords that later rounds split are no edges any more: the others are the constrained edges.
+  // Chords that later rounds split are no edges any more: the others are the paths.
   std::erase_if(
       paths, [&](const std::vector<int>& p) { return !find_halfedge(r.mesh, VertexId(p[0]), VertexId(p[1])).valid(); });
   ASSERT_GT(paths.size(), 300u);
   const RefinedMesh before = r;
+  std::vector<std::vector<Eigen::Vector3d>> path_points;
+  std::set<int> path_vertices;
+  for (const auto& p : paths) {
+    path_points.push_back({r.positions[static_cast<size_t>(p[0])], r.positions[static_cast<size_t>(p[1])]});
+    path_vertices.insert(p.begin(), p.end());
+  }
   auto caps = [](const RefinedMesh& m) {
     int n = 0;
     for (const auto& f : m.faces) n += largest_angle(m, f) > 170 ? 1 : 0;
     return n;
   };
-  const int flips = improve_refined_triangles(r, paths);
-  EXPECT_GT(flips, 0);
+  const RemeshStats stats = remesh_along_paths(r, input, paths);
   ASSERT_GT(caps(before), 50);
-  // Not all: a cap whose long edge is a chord or an input edge cannot be flipped, nor one that faces a needle.
-  EXPECT_LT(3 * caps(r), 2 * caps(before)) << "caps before " << caps(before) << ", after " << caps(r);
+  EXPECT_LT(2 * caps(r), caps(before)) << "caps before " << caps(before) << ", after " << caps(r);
 
-  ASSERT_EQ(r.n_vertices(), before.n_vertices());
-  ASSERT_EQ(r.faces.size(), before.faces.size());
+  // Only the input vertices and the path vertices are left, at the same points, and the paths are the same.
+  EXPECT_EQ(r.n_vertices(), in.V.rows() + static_cast<Eigen::Index>(path_vertices.size()));
+  EXPECT_EQ(stats.dropped_vertices, before.n_vertices() - r.n_vertices());
+  EXPECT_GT(stats.dropped_vertices, 0);
+  for (size_t i = 0; i < paths.size(); ++i) {
+    for (size_t j = 0; j < 2; ++j) EXPECT_EQ(r.positions[static_cast<size_t>(paths[i][j])], path_points[i][j]);
+  }
   EXPECT_EQ(r.mesh.euler_characteristic(), 2);
   EXPECT_TRUE(r.mesh.boundary_loops().empty());
   EXPECT_NEAR(test::area(r.vertex_matrix(), r.face_matrix()), test::area(in.V, in.F), 1e-9 * test::area(in.V, in.F));
   for (const auto& p : paths) EXPECT_TRUE(find_halfedge(r.mesh, VertexId(p[0]), VertexId(p[1])).valid());
+  const double scale = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
+  for (int v = 0; v < r.n_vertices(); ++v) {
+    EXPECT_LT(
+        (interpolate(input, in.V, r.on_input[static_cast<size_t>(v)]) - r.positions[static_cast<size_t>(v)].transpose())
+            .norm(),
+        1e-12 * scale);
+  }
   for (size_t f = 0; f < r.faces.size(); ++f) {
     const auto fv = input.face_vertices(FaceId(r.input_face[f]));
     const Eigen::Vector3d a = in.V.row(fv[0].idx), b = in.V.row(fv[1].idx), c = in.V.row(fv[2].idx);
@@ -143,43 +161,23 @@ TEST(cut_refined_mesh, DelaunayFlipsRemoveCapsAndKeepTheSurface) {
       EXPECT_GE((a - p).cross(b - p).dot(nrm), -tol) << "face " << f << " leaves its input face";
     }
   }
-  // Locally Delaunay: every edge inside one input face that is not a chord, where the flip would be convex and
-  // would not join two chord vertices (boundary vertices once cut), has opposite angles summing to at most pi. No
-  // edge between two chord vertices is new.
-  std::set<std::pair<int, int>> fixed, old_edges;
-  std::set<int> on_path;
-  for (const auto& p : paths) {
-    fixed.insert({std::min(p[0], p[1]), std::max(p[0], p[1])});
-    on_path.insert(p.begin(), p.end());
-  }
-  for (int e = 0; e < before.mesh.n_edges(); ++e) {
-    const HalfedgeId h = Mesh::halfedge(EdgeId(e));
-    const int u = before.mesh.tail(h).idx, w = before.mesh.head(h).idx;
-    old_edges.insert({std::min(u, w), std::max(u, w)});
-  }
+  // Constrained Delaunay: every edge inside one input face that is not a path segment has opposite angles summing
+  // to at most pi.
+  std::set<std::pair<int, int>> fixed;
+  for (const auto& p : paths) fixed.insert({std::min(p[0], p[1]), std::max(p[0], p[1])});
   for (int e = 0; e < r.mesh.n_edges(); ++e) {
     const HalfedgeId h = Mesh::halfedge(EdgeId(e)), t = Mesh::twin(h);
     const int u = r.mesh.tail(h).idx, w = r.mesh.head(h).idx;
-    if (on_path.count(u) && on_path.count(w)) {
-      EXPECT_TRUE(old_edges.count({std::min(u, w), std::max(u, w)})) << "new edge " << u << "-" << w;
-    }
     if (fixed.count({std::min(u, w), std::max(u, w)})) continue;
     const int f1 = r.mesh.face(h).idx, f2 = r.mesh.face(t).idx;
     if (r.input_face[static_cast<size_t>(f1)] != r.input_face[static_cast<size_t>(f2)]) continue;
     const int x = r.mesh.head(r.mesh.next(h)).idx, y = r.mesh.head(r.mesh.next(t)).idx;
-    if (on_path.count(x) && on_path.count(y)) continue;
     const auto angle = [&](int at, int a, int b) {
       const Eigen::Vector3d p = r.positions[static_cast<size_t>(at)];
       const Eigen::Vector3d da = r.positions[static_cast<size_t>(a)] - p, db = r.positions[static_cast<size_t>(b)] - p;
       return std::atan2(da.cross(db).norm(), da.dot(db));
     };
-    const Eigen::Vector3d pu = r.positions[static_cast<size_t>(u)], pw = r.positions[static_cast<size_t>(w)];
-    const Eigen::Vector3d px = r.positions[static_cast<size_t>(x)], py = r.positions[static_cast<size_t>(y)];
-    const Eigen::Vector3d normal = (pw - pu).cross(px - pu);
-    const bool convex = (py - pu).cross(px - pu).dot(normal) > 0 && (pw - py).cross(px - py).dot(normal) > 0;
-    if (convex) {
-      EXPECT_LE(angle(x, u, w) + angle(y, w, u), std::numbers::pi * (1 + 1e-6)) << "edge " << u << "-" << w;
-    }
+    EXPECT_LE(angle(x, u, w) + angle(y, w, u), std::numbers::pi * (1 + 1e-6)) << "edge " << u << "-" << w;
   }
 }
 
