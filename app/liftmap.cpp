@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <new>
@@ -364,7 +365,19 @@ int run_transfer_mesh(const TransferJob& job) {
     throw liftmap::InvalidInputError(job.map_path + ": " + std::to_string(points.size()) + " lines, but " +
                                      job.connectivity_path + " has " + std::to_string(source.V.rows()) + " vertices");
   }
-  liftmap::write_mesh(job.out_path, liftmap::interpolate_at(onto.F, onto.V, points), source.F);
+  const Eigen::MatrixXd placed = liftmap::interpolate_at(onto.F, onto.V, points);
+  liftmap::write_mesh(job.out_path, placed, source.F);
+  // Folded triangles: reported and listed (one face index per line) next to the output, never silently.
+  const std::vector<int> folded = liftmap::folded_faces(source.F, placed, onto.V, onto.F, points);
+  const std::string folded_path = job.out_path + ".folded.txt";
+  liftmap::refuse_overwriting_inputs(folded_path, {job.map_path, job.onto_path, job.connectivity_path});
+  std::ofstream list(folded_path);
+  list << "# faces of " << job.connectivity_path << " folded against the surface of " << job.onto_path << ": "
+       << folded.size() << " of " << source.F.rows() << "\n";
+  for (const int f : folded) list << f << "\n";
+  if (!list) throw liftmap::IoError(folded_path + ": cannot write file");
+  std::fprintf(stderr, "liftmap: %zu of %lld transferred triangles are folded against %s (listed in %s)\n",
+               folded.size(), static_cast<long long>(source.F.rows()), job.onto_path.c_str(), folded_path.c_str());
   return liftmap::kExitOk;
 }
 

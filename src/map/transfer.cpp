@@ -35,6 +35,27 @@ Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& 
   return out;
 }
 
+std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::MatrixXd& placed,
+                              const Eigen::MatrixXd& V_target, const Eigen::MatrixXi& F_target,
+                              const std::vector<SurfacePoint>& points) {
+  const auto unit_normal = [&](int f) -> Eigen::Vector3d {
+    const Eigen::Vector3d a = V_target.row(F_target(f, 0)), b = V_target.row(F_target(f, 1)),
+                          c = V_target.row(F_target(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double l = n.norm();
+    return l > 0 ? Eigen::Vector3d(n / l) : Eigen::Vector3d::Zero();
+  };
+  std::vector<int> folded;
+  for (Eigen::Index f = 0; f < F_source.rows(); ++f) {
+    const Eigen::Vector3d p0 = placed.row(F_source(f, 0)), p1 = placed.row(F_source(f, 1)),
+                          p2 = placed.row(F_source(f, 2));
+    Eigen::Vector3d surface = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) surface += unit_normal(points[static_cast<size_t>(F_source(f, k))].face.idx);
+    if (!((p1 - p0).cross(p2 - p0).dot(surface) > 0)) folded.push_back(static_cast<int>(f));
+  }
+  return folded;
+}
+
 Eigen::MatrixXd read_attributes(const std::string& path, std::vector<int>* line_of_row) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open file");

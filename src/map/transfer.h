@@ -19,6 +19,20 @@ namespace liftmap {
 Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& X,
                                const std::vector<SurfacePoint>& points);
 
+/// The faces of a mesh placed on a target surface (`liftmap transfer mesh`) that are folded against it: face f of
+/// `F_source`, with corners at `placed` (the images of its vertices), is folded if its normal
+/// n_f = (p1 - p0) x (p2 - p0) satisfies n_f . N_f <= 0, where N_f is the sum of the unit normals of the target
+/// faces that hold its three corners' images (a zero-area placed face counts as folded).
+/// \param F_source #Fs by 3 faces of the source mesh
+/// \param placed #Vs by 3 positions of the source vertices on the target (interpolate_at of `points`)
+/// \param V_target, F_target the target mesh
+/// \param points #Vs face points of the target, one per source vertex (the map)
+/// \return indices of the folded faces of `F_source`, increasing
+/// \pre every point's face is a face of `F_target` (interpolate_at has checked it)
+std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::MatrixXd& placed,
+                              const Eigen::MatrixXd& V_target, const Eigen::MatrixXi& F_target,
+                              const std::vector<SurfacePoint>& points);
+
 /// Reads a table of numbers: one row of whitespace-separated numbers per line, `#` comments, blank lines
 /// ignored (per-vertex attributes, map files).
 /// \param line if not null, receives the file line of every row (for messages)

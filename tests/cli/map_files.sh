@@ -42,4 +42,14 @@ bad word "0 one 0 0" 3 "'one' is not a number"
 corrupt rounded "0 0.3333333 0.3333333 0.3333334"
 expect "rounded coordinates accepted" 0 "mean error" -- eval "$tmp/rounded.txt" "$good" --target "$b"
 expect "map against itself" 0 "mean error: 0" -- eval "$good" "$good" --target "$b"
+
+# transfer mesh reports the triangles folded against the target and lists them (issue 25): none for
+# sphere-ellipsoid; all of them for the source faces reversed.
+expect "transfer mesh" 0 "^liftmap: 0 of 1620 transferred triangles are folded" -- \
+  transfer mesh "$good" --onto "$b" --connectivity "$a" -o "$tmp/a_on_b.obj"
+require "folded list written" grep -q "0 of 1620" "$tmp/a_on_b.obj.folded.txt"
+python3 "$(dirname "$0")/make_variant.py" invert "$a" "$tmp/inverted.off"
+expect "transfer mesh, reversed faces" 0 "^liftmap: 1620 of 1620 transferred triangles are folded" -- \
+  transfer mesh "$good" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/inv_on_b.obj"
+require "folded list holds every face" test "$(grep -c -v '^#' "$tmp/inv_on_b.obj.folded.txt")" = 1620
 finish

@@ -53,6 +53,29 @@ TEST(Transfer, EvalOfAMapAgainstItselfIsZeroAndAgainstAPerturbedCopyIsThePerturb
   EXPECT_THROW(compare_maps(m.V, m.F, moved, std::vector<SurfacePoint>(3)), InvalidInputError);
 }
 
+TEST(Transfer, FoldedFacesOfAPlacedMesh) {
+  const TriangleMesh m = testing::read_demo_mesh("ellipsoid.off");
+  auto map = identity_map(m);
+  EXPECT_TRUE(folded_faces(m.F, interpolate_at(m.F, m.V, map), m.V, m.F, map).empty());
+  // Reversed faces are all folded against the surface.
+  Eigen::MatrixXi reversed = m.F;
+  reversed.col(1).swap(reversed.col(2));
+  EXPECT_EQ(folded_faces(reversed, interpolate_at(m.F, m.V, map), m.V, m.F, map).size(),
+            static_cast<size_t>(m.F.rows()));
+  // Vertex 0's image moved across its fan to the far side of a neighbour: the faces around it fold over.
+  const int v = m.F(0, 0), w = m.F(0, 1);
+  std::vector<int> around;
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    if ((m.F.row(f).array() == v).any()) around.push_back(static_cast<int>(f));
+  }
+  const Eigen::Vector3d target = 2 * Eigen::Vector3d(m.V.row(w)) - Eigen::Vector3d(m.V.row(v));
+  Eigen::MatrixXd placed = interpolate_at(m.F, m.V, map);
+  placed.row(v) = target.transpose();
+  const auto folded = folded_faces(m.F, placed, m.V, m.F, map);
+  EXPECT_FALSE(folded.empty());
+  for (const int f : folded) EXPECT_TRUE(std::find(around.begin(), around.end(), f) != around.end()) << f;
+}
+
 TEST(Transfer, AttributesInterpolateAtMapPointsAndRoundTripThroughFiles) {
   const TriangleMesh m = testing::read_demo_mesh("ellipsoid.off");
   const auto map = identity_map(m);
