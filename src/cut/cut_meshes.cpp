@@ -113,6 +113,12 @@ CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   trace.steiner = options.geodesic_paths;
   trace.shorten = options.geodesic_paths;
   TracedPaths traced = trace_cut_paths(ra, mesh_a, la, rb, mesh_b, lb, result.tree, trace);
+  // The paths straight across input faces and the vertices of intermediate paths gone before the two sides'
+  // vertices are paired, then the faces that the paired vertices split re-triangulated once more.
+  if (options.remesh) {
+    remesh_along_paths(ra, mesh_a, traced.paths_a, true);
+    remesh_along_paths(rb, mesh_b, traced.paths_b, true);
+  }
   equalize_paths(ra, mesh_a, traced.paths_a, rb, mesh_b, traced.paths_b, options.snap);
   if (options.remesh) {
     remesh_along_paths(ra, mesh_a, traced.paths_a);

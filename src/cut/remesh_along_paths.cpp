@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "core/errors.h"
@@ -127,7 +128,11 @@ std::vector<std::array<int, 3>> triangulate_face(const std::array<Eigen::Vector2
     }
     throw fail("a path segment ends at a vertex not on the face");
   };
-  for (const auto& s : segments) cdt.insert_constraint(handle[index_of(s[0])], handle[index_of(s[1])]);
+  try {
+    for (const auto& s : segments) cdt.insert_constraint(handle[index_of(s[0])], handle[index_of(s[1])]);
+  } catch (const typename Cdt::Intersection_of_constraints_exception&) {
+    throw fail("two path segments cross");
+  }
   // Outside: reachable from the infinite face without crossing a constraint (this includes slivers between a side
   // and side points that rounding put a little inside it).
   for (const auto f : cdt.all_face_handles()) f->info() = 0;
@@ -169,19 +174,51 @@ std::vector<std::array<int, 3>> triangulate_face(const std::array<Eigen::Vector2
   return out;
 }
 
-}  // namespace
+/// Drops every path vertex inside an input face whose two path neighbours lie on that face and on no other common
+/// face (as vertices of
+/// intermediate refinements leave them): the path then runs straight across each input face, from where it enters
+/// to where it leaves, as a geodesic does. Two paths that did not cross do not cross after it: their chords of one
+/// face end at points that do not interleave along the face's boundary.
+/// \return the number of vertices dropped
+int straighten_within_faces(const RefinedMesh& refined, const Mesh& input, std::vector<std::vector<int>>& paths) {
+  int dropped = 0;
+  for (auto& p : paths) {
+    std::vector<int> out;
+    for (size_t i = 0; i < p.size(); ++i) {
+      const SurfacePoint& x = refined.on_input[static_cast<size_t>(p[i])];
+      if (i > 0 && i + 1 < p.size() && x.kind == SurfacePoint::Kind::kFace) {
+        const auto before = faces_containing(input, refined.on_input[static_cast<size_t>(out.back())]);
+        const auto after = faces_containing(input, refined.on_input[static_cast<size_t>(p[i + 1])]);
+        std::vector<int> common;
+        std::set_intersection(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(common));
+        // Only across the face: neighbours on one common edge would make the chord run along it, possibly over
+        // other vertices there.
+        if (common.size() == 1 && common[0] == x.face.idx) {
+          ++dropped;
+          continue;
+        }
+      }
+      out.push_back(p[i]);
+    }
+    p = std::move(out);
+  }
+  return dropped;
+}
 
-RemeshStats remesh_along_paths(RefinedMesh& refined, const Mesh& input, std::vector<std::vector<int>>& paths) {
+/// remesh_along_paths without its fallback.
+RemeshStats rebuild(RefinedMesh& refined, const Mesh& input, std::vector<std::vector<int>>& paths, bool straighten) {
   const int n_input = input.n_vertices();
   const int n_old = refined.n_vertices();
+  std::vector<std::vector<int>> straight = paths;
+  RemeshStats stats;
+  if (straighten) stats.straightened_vertices = straighten_within_faces(refined, input, straight);
   // The vertices kept: the input vertices, then the path vertices in their old order.
   std::vector<int> new_id(static_cast<size_t>(n_old), -1);
   for (int v = 0; v < n_input; ++v) new_id[static_cast<size_t>(v)] = v;
-  for (const auto& p : paths) {
+  for (const auto& p : straight) {
     for (const int v : p) new_id[static_cast<size_t>(v)] = 0;
   }
   RefinedMesh out;
-  RemeshStats stats;
   for (int v = 0; v < n_old; ++v) {
     if (new_id[static_cast<size_t>(v)] < 0) {
       ++stats.dropped_vertices;
@@ -199,7 +236,7 @@ RemeshStats remesh_along_paths(RefinedMesh& refined, const Mesh& input, std::vec
     for (const int f : faces_containing(input, out.on_input[static_cast<size_t>(v)]))
       extra[static_cast<size_t>(f)].push_back(v);
   }
-  std::vector<std::vector<int>> renumbered = paths;
+  std::vector<std::vector<int>> renumbered = std::move(straight);
   for (auto& p : renumbered) {
     for (int& v : p) v = new_id[static_cast<size_t>(v)];
     for (size_t i = 0; i + 1 < p.size(); ++i) {
@@ -254,6 +291,30 @@ RemeshStats remesh_along_paths(RefinedMesh& refined, const Mesh& input, std::vec
   refined = std::move(out);
   paths = std::move(renumbered);
   return stats;
+}
+
+}  // namespace
+
+RemeshStats remesh_along_paths(RefinedMesh& refined, const Mesh& input, std::vector<std::vector<int>>& paths,
+                               bool straighten) {
+  if (straighten) {
+    try {
+      return rebuild(refined, input, paths, true);
+    } catch (const PipelineError&) {
+      // Rounding let two straightened paths touch in some face: keep the paths as traced.
+    }
+  }
+  try {
+    RemeshStats stats = rebuild(refined, input, paths, false);
+    stats.straightening_failed = straighten;
+    return stats;
+  } catch (const PipelineError&) {
+    // Two refined vertices at one point of a face (the tracing's refinements can make them): the refined mesh is
+    // valid as it is, only not re-triangulated.
+    RemeshStats stats;
+    stats.kept_as_traced = true;
+    return stats;
+  }
 }
 
 }  // namespace liftmap

@@ -45,6 +45,12 @@ TEST(cut_meshes, MixedPatternsBetweenMeshes) {
   }
 }
 
+TEST(cut_meshes, AFaceThatCannotBeRetriangulatedKeepsTheTracedTriangulation) {
+  // The cut sweep's configuration in which tracing left two refined vertices at one point of an input face: the
+  // constrained Delaunay re-triangulation cannot take it, and the cut goes on with the traced triangulation.
+  run({"triceratops", "cow"}, 16, Pattern::kClose, 1349420280);
+}
+
 TEST(cut_meshes, PathTreeOption) {
   CutOptions options;
   options.tree = CutOptions::Tree::kPath;
