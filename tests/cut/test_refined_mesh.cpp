@@ -37,6 +37,17 @@ std::vector<std::array<int, 2>> split_random_faces(RefinedMesh& r, const Mesh& i
   return chords;
 }
 
+/// Every refined vertex is at the point of the input surface its provenance names.
+void expect_exact_provenance(const RefinedMesh& r, const Mesh& input, const Eigen::MatrixXd& V) {
+  const double scale = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  for (int v = 0; v < r.n_vertices(); ++v) {
+    EXPECT_LT(
+        (interpolate(input, V, r.on_input[static_cast<size_t>(v)]) - r.positions[static_cast<size_t>(v)].transpose())
+            .norm(),
+        1e-12 * scale);
+  }
+}
+
 // Random edge splits and chords keep the surface: same area, closed genus 0, provenance on the input.
 TEST(cut_refined_mesh, RandomSplitsKeepTheSurface) {
   const auto in = test::load("hand");
@@ -60,13 +71,7 @@ TEST(cut_refined_mesh, RandomSplitsKeepTheSurface) {
   EXPECT_EQ(r.mesh.euler_characteristic(), 2);
   EXPECT_TRUE(r.mesh.boundary_loops().empty());
   EXPECT_NEAR(test::area(r.vertex_matrix(), r.face_matrix()), test::area(in.V, in.F), 1e-9 * test::area(in.V, in.F));
-  const double scale = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
-  for (int v = 0; v < r.n_vertices(); ++v) {
-    EXPECT_LT(
-        (interpolate(input, in.V, r.on_input[static_cast<size_t>(v)]) - r.positions[static_cast<size_t>(v)].transpose())
-            .norm(),
-        1e-12 * scale);
-  }
+  expect_exact_provenance(r, input, in.V);
   // No degenerate face.
   for (const auto& f : r.faces) {
     const Eigen::Vector3d a = r.positions[static_cast<size_t>(f[0])], b = r.positions[static_cast<size_t>(f[1])],
@@ -139,13 +144,7 @@ TEST(cut_refined_mesh, RemeshAlongPathsRemovesCapsAndKeepsTheSurface) {
   EXPECT_TRUE(r.mesh.boundary_loops().empty());
   EXPECT_NEAR(test::area(r.vertex_matrix(), r.face_matrix()), test::area(in.V, in.F), 1e-9 * test::area(in.V, in.F));
   for (const auto& p : paths) EXPECT_TRUE(find_halfedge(r.mesh, VertexId(p[0]), VertexId(p[1])).valid());
-  const double scale = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
-  for (int v = 0; v < r.n_vertices(); ++v) {
-    EXPECT_LT(
-        (interpolate(input, in.V, r.on_input[static_cast<size_t>(v)]) - r.positions[static_cast<size_t>(v)].transpose())
-            .norm(),
-        1e-12 * scale);
-  }
+  expect_exact_provenance(r, input, in.V);
   for (size_t f = 0; f < r.faces.size(); ++f) {
     const auto fv = input.face_vertices(FaceId(r.input_face[f]));
     const Eigen::Vector3d a = in.V.row(fv[0].idx), b = in.V.row(fv[1].idx), c = in.V.row(fv[2].idx);

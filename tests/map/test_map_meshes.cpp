@@ -25,20 +25,8 @@ std::vector<VertexId> random_vertices(int n_vertices, int k, std::mt19937& rng) 
   return out;
 }
 
-Eigen::Vector3d position(const TriangleMesh& m, const SurfacePoint& p) {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * m.V.row(m.F(p.face.idx, k)).transpose();
-  return x;
-}
-
-double sqrt_area(const TriangleMesh& m) {
-  double a = 0;
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
-    const Eigen::Vector3d p = m.V.row(m.F(f, 0)), q = m.V.row(m.F(f, 1)), r = m.V.row(m.F(f, 2));
-    a += 0.5 * (q - p).cross(r - p).norm();
-  }
-  return std::sqrt(a);
-}
+using testing::position;
+using testing::sqrt_area;
 
 // The end-to-end invariants of the map on a real pair with seeded random landmarks.
 void expect_valid_map(const TriangleMesh& A, const TriangleMesh& B, int k, unsigned seed, MapOptions options = {}) {
