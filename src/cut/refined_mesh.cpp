@@ -1,16 +1,10 @@
 #include "cut/refined_mesh.h"
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdint>
 #include <iterator>
-#include <numbers>
 #include <string>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "core/errors.h"
 

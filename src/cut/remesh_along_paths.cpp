@@ -58,6 +58,14 @@ std::vector<int> faces_containing(const Mesh& input, const SurfacePoint& p) {
   return fs;
 }
 
+/// The input faces whose closures contain both points, sorted: none, one, or the two faces of a common edge.
+std::vector<int> common_faces(const Mesh& input, const SurfacePoint& p, const SurfacePoint& q) {
+  const auto fp = faces_containing(input, p), fq = faces_containing(input, q);
+  std::vector<int> common;
+  std::set_intersection(fp.begin(), fp.end(), fq.begin(), fq.end(), std::back_inserter(common));
+  return common;
+}
+
 unsigned sides_of(const std::array<double, 3>& b) {
   unsigned s = 0;
   for (unsigned k = 0; k < 3; ++k) {
@@ -175,11 +183,10 @@ std::vector<std::array<int, 3>> triangulate_face(const std::array<Eigen::Vector2
 }
 
 /// Drops every path vertex inside an input face whose two path neighbours lie on that face and on no other common
-/// face (as vertices of
-/// intermediate refinements leave them): the path then runs straight across each input face, from where it enters
-/// to where it leaves, as a geodesic does. Two paths that did not cross do not cross after it: their chords of one
-/// face end at points that do not interleave along the face's boundary.
-/// \return the number of vertices dropped
+/// face (as vertices of intermediate refinements leave them): the path then runs straight across each input face,
+/// from where it enters to where it leaves, as a geodesic does. Two paths that did not cross do not cross after it:
+/// their chords of one face end at points that do not interleave along the face's boundary. \return the number of
+/// vertices dropped
 int straighten_within_faces(const RefinedMesh& refined, const Mesh& input, std::vector<std::vector<int>>& paths) {
   int dropped = 0;
   for (auto& p : paths) {
@@ -187,10 +194,8 @@ int straighten_within_faces(const RefinedMesh& refined, const Mesh& input, std::
     for (size_t i = 0; i < p.size(); ++i) {
       const SurfacePoint& x = refined.on_input[static_cast<size_t>(p[i])];
       if (i > 0 && i + 1 < p.size() && x.kind == SurfacePoint::Kind::kFace) {
-        const auto before = faces_containing(input, refined.on_input[static_cast<size_t>(out.back())]);
-        const auto after = faces_containing(input, refined.on_input[static_cast<size_t>(p[i + 1])]);
-        std::vector<int> common;
-        std::set_intersection(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(common));
+        const auto common = common_faces(input, refined.on_input[static_cast<size_t>(out.back())],
+                                         refined.on_input[static_cast<size_t>(p[i + 1])]);
         // Only across the face: neighbours on one common edge would make the chord run along it, possibly over
         // other vertices there.
         if (common.size() == 1 && common[0] == x.face.idx) {
@@ -240,10 +245,8 @@ RemeshStats rebuild(RefinedMesh& refined, const Mesh& input, std::vector<std::ve
   for (auto& p : renumbered) {
     for (int& v : p) v = new_id[static_cast<size_t>(v)];
     for (size_t i = 0; i + 1 < p.size(); ++i) {
-      const auto fu = faces_containing(input, out.on_input[static_cast<size_t>(p[i])]);
-      const auto fw = faces_containing(input, out.on_input[static_cast<size_t>(p[i + 1])]);
-      std::vector<int> common;
-      std::set_intersection(fu.begin(), fu.end(), fw.begin(), fw.end(), std::back_inserter(common));
+      const auto common =
+          common_faces(input, out.on_input[static_cast<size_t>(p[i])], out.on_input[static_cast<size_t>(p[i + 1])]);
       if (common.empty())
         throw PipelineError("cut: path segment " + edge_name(p[i], p[i + 1]) + " lies in no input face");
       if (common.size() == 1) segments[static_cast<size_t>(common[0])].push_back({p[i], p[i + 1]});
@@ -266,12 +269,13 @@ RemeshStats rebuild(RefinedMesh& refined, const Mesh& input, std::vector<std::ve
       const auto b = barycentric_in_face(input, out.on_input[static_cast<size_t>(v)], FaceId(static_cast<int>(f)));
       vertices.push_back({v, b, sides_of(b)});
     }
+    const auto corners = layout(refined, c);
     std::vector<std::array<int, 3>> triangles;
     try {
-      triangles = triangulate_face<CGAL::Epick>(layout(refined, c), vertices, segments[f], static_cast<int>(f));
+      triangles = triangulate_face<CGAL::Epick>(corners, vertices, segments[f], static_cast<int>(f));
     } catch (const PipelineError&) {
       // Rounding put points of one side off its line (a sliver of three side points, or a gap): exactly, then.
-      triangles = triangulate_face<CGAL::Epeck>(layout(refined, c), vertices, segments[f], static_cast<int>(f));
+      triangles = triangulate_face<CGAL::Epeck>(corners, vertices, segments[f], static_cast<int>(f));
       ++stats.exact_faces;
     }
     for (const auto& t : triangles) {
