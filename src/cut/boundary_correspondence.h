@@ -1,5 +1,5 @@
 #pragma once
-/// The boundary correspondence nu between the two cut disks (paper §3.4 and NOTES.md): corresponding cut paths
+/// The boundary correspondence nu between the two cut disks (paper §3.4 and docs/algorithm.md): corresponding cut paths
 /// are matched by the monotone cubic reparameterisation, each side's vertices are inserted into the other, and
 /// nu pairs the boundary vertices one to one.
 
@@ -13,8 +13,8 @@
 namespace liftmap {
 
 /// r(s) = s + (L - l) (3 (s/l)^2 - 2 (s/l)^3): maps arc length s in [0, l] on the shorter path to arc length on
-/// the longer one; r(0) = 0, r(l) = L, r'(0) = r'(l) = 1, monotone (NOTES.md, §3.4).
-/// \pre 0 < l <= L
+/// the longer one; r(0) = 0, r(l) = L, r'(0) = r'(l) = 1, monotone (docs/algorithm.md, "The boundary
+/// reparameterisation"). \pre 0 < l <= L
 double cubic_reparameterisation(double s, double l, double L);
 
 /// The inverse of `cubic_reparameterisation`: the s in [0, l] with r(s) = y, y in [0, L].

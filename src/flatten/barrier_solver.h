@@ -28,7 +28,7 @@ struct SubproblemMesh {
 };
 
 /// Problem (10): minimise E(Phi) + E(Psi) over the shared unknown positions X (#slots by 2), with
-/// E = sqrt(sum_j |t_j| E_j^2) (p = 2) or max_j E_j (p = inf), E_j = h(Sigma_j, 1/sigma_tilde_j) (NOTES.md).
+/// E = sqrt(sum_j |t_j| E_j^2) (p = 2) or max_j E_j (p = inf), E_j = h(Sigma_j, 1/sigma_tilde_j) (docs/algorithm.md).
 struct ConvexSubproblem {
   std::array<SubproblemMesh, 2> meshes;
   /// Constraint-only faces (no energy): sigma_tilde_j > 0 and Sigma_j <= kGhostStretch * Sigma_j(X0) on each

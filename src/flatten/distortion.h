@@ -1,5 +1,6 @@
 #pragma once
-/// Isometric distortion of flattenings (paper §3.3, eqs. (1)-(3) and (8); NOTES.md §3.3).
+/// Isometric distortion of flattenings (paper §3.3, eqs. (1)-(3) and (8); docs/algorithm.md, "The convexified
+/// distortion").
 
 #include <Eigen/Core>
 
@@ -18,7 +19,7 @@ enum class DistortionCombiner {
 Eigen::MatrixXd singular_values(const Eigen::MatrixXd& P);
 
 /// The convexified smallest singular value sigma_tilde = alpha cos(theta) + beta sin(theta) - |(gamma,delta)|
-/// of eq. (7b) (NOTES.md); concave in the Jacobian, <= sigma, equal to sigma when theta is the polar rotation.
+/// of eq. (7b) (docs/algorithm.md); concave in the Jacobian, <= sigma, equal to sigma when theta is the polar rotation.
 /// \param P #F by 4 (alpha, beta, gamma, delta)
 /// \param theta #F rotation angles
 /// \return #F values; the face is feasible for problem (10) iff its value is > 0

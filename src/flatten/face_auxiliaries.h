@@ -1,5 +1,5 @@
 #pragma once
-/// The per-face auxiliary problem of the barrier method for problem (10) with p = 2 (paper §3.3, NOTES.md):
+/// The per-face auxiliary problem of the barrier method for problem (10) with p = 2 (paper §3.3, docs/algorithm.md):
 /// at fixed vertex positions, the best auxiliary variables (c, e) of one face.
 
 namespace liftmap {

@@ -1,5 +1,5 @@
 #pragma once
-/// Liftability checks of a flattening (paper §3.3, "Liftability"; NOTES.md "Facts worth testing").
+/// Liftability checks of a flattening (paper §3.3, "Liftability"; docs/algorithm.md, "Facts the tests check").
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
 #pragma once
 /// Per-face Jacobians of a flattening as constant linear maps of the vertex positions (paper §3.3,
-/// "Optimizing Phi, Psi"; NOTES.md: A_j = U D (X D)^+).
+/// "Optimizing Phi, Psi"; docs/algorithm.md: A_j = U D (X D)^+).
 
 #include <Eigen/Core>
 
@@ -21,7 +21,7 @@ struct JacobianOperator {
 /// \throw InvalidInputError naming the face if a face is degenerate (zero area).
 JacobianOperator jacobian_operator(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
-/// The Jacobians of a flattening in the 2-vector form of NOTES.md §3.3:
+/// The Jacobians of a flattening in the 2-vector form of docs/algorithm.md, "The convexified distortion":
 /// alpha = (a11+a22)/2, beta = (a21-a12)/2, gamma = (a11-a22)/2, delta = (a12+a21)/2.
 /// \param op the mesh's Jacobian operator
 /// \param F #F by 3 vertex indices

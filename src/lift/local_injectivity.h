@@ -1,6 +1,6 @@
 #pragma once
 /// Exact check of local injectivity of a flattening, the condition under which path lifting is well defined
-/// (paper §3.2, footnote 1 and "Sufficient conditions"; NOTES.md "Facts worth testing").
+/// (paper §3.2, footnote 1 and "Sufficient conditions"; docs/algorithm.md, "Facts the tests check").
 
 #include <Eigen/Core>
 #include <string>

@@ -60,7 +60,7 @@ def face_jacobian_maps(V, F):
 
 
 def parts(A):
-    """(alpha, beta, gamma, delta) of a 2x2 matrix, NOTES.md."""
+    """(alpha, beta, gamma, delta) of a 2x2 matrix, docs/algorithm.md (the convexified distortion)."""
     return ((A[0, 0] + A[1, 1]) / 2, (A[1, 0] - A[0, 1]) / 2, (A[0, 0] - A[1, 1]) / 2, (A[0, 1] + A[1, 0]) / 2)
 
 

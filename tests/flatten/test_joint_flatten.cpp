@@ -18,7 +18,7 @@
 namespace liftmap {
 namespace {
 
-/// The liftability invariants of one iterate (NOTES.md, "Facts worth testing").
+/// The liftability invariants of one iterate (docs/algorithm.md, "Facts the tests check").
 void expect_liftable(const testing::TestDisk& d, const Eigen::MatrixXd& U, const char* what) {
   EXPECT_GT(signed_double_areas(d.F, U).minCoeff(), 0) << what << ": flipped or degenerate face";
   const Eigen::VectorXd sums = angle_sums(*d.mesh, U);
