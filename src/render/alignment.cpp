@@ -2,7 +2,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 #include <cmath>
 #include <numbers>
 
@@ -18,20 +17,17 @@ SimilarityTransform align_similarity(const Eigen::MatrixXd& P, const Eigen::Matr
   if (P.cols() != 3 || Q.cols() != 3 || P.rows() != Q.rows())
     throw InvalidInputError("align_similarity: expected two #L by 3 matrices with the same number of rows");
   if (P.rows() < 2) throw InvalidInputError("align_similarity: at least 2 corresponding points are needed");
-  const Eigen::RowVector3d mp = P.colwise().mean(), mq = Q.colwise().mean();
-  const Eigen::MatrixXd P0 = P.rowwise() - mp, Q0 = Q.rowwise() - mq;
-  const double var_q = Q0.squaredNorm() / Q.rows();
-  if (var_q <= 0.0) throw InvalidInputError("align_similarity: the source points all coincide");
+  // Eigen::umeyama divides by the source points' variance: reject coincident points before it yields inf or NaN.
+  if ((Q.rowwise() - Q.colwise().mean()).squaredNorm() <= 0.0)
+    throw InvalidInputError("align_similarity: the source points all coincide");
 
-  const Eigen::Matrix3d cov = P0.transpose() * Q0 / P.rows();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Vector3d sign = Eigen::Vector3d::Ones();
-  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) sign[2] = -1.0;  // no reflections
-
+  // umeyama takes one point per column and returns the 4 by 4 homogeneous matrix [scale R, t; 0, 1].
+  const Eigen::Matrix4d T = Eigen::umeyama(Q.transpose(), P.transpose(), true);
   SimilarityTransform out;
-  out.R = svd.matrixU() * sign.asDiagonal() * svd.matrixV().transpose();
-  out.scale = svd.singularValues().dot(sign) / var_q;
-  out.t = mp.transpose() - out.scale * out.R * mq.transpose();
+  out.scale = T.topLeftCorner<3, 3>().col(0).norm();  // every column of scale R has length scale
+  // A zero scale (P's points coincide, or are uncorrelated with Q's) leaves R undetermined: keep the identity.
+  if (out.scale > 0.0) out.R = T.topLeftCorner<3, 3>() / out.scale;
+  out.t = T.topRightCorner<3, 1>();
   return out;
 }
 

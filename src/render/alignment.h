@@ -17,10 +17,12 @@ struct SimilarityTransform {
 };
 
 /// Least-squares similarity transform taking the points Q onto the points P: minimises
-/// sum_i |scale R Q_i + t - P_i|^2 over rotations R (det +1, never a reflection), scale > 0 and t
-/// (Umeyama 1991: SVD of the cross-covariance with the sign of the last singular vector fixed).
+/// sum_i |scale R Q_i + t - P_i|^2 over rotations R (det +1, never a reflection), scale >= 0 and t
+/// (Umeyama 1991, computed by Eigen::umeyama: SVD of the cross-covariance with the sign of the last singular
+/// vector fixed).
 /// With fewer than 3 non-collinear points the rotation about their common line is not determined; the result is
-/// then one of the minimisers.
+/// then one of the minimisers. When the points of P all coincide (more generally, when the cross-covariance
+/// vanishes) the minimiser has scale 0, and R is returned as the identity.
 /// \param P #L by 3 target points (e.g. landmarks on A)
 /// \param Q #L by 3 source points (e.g. the corresponding landmarks on B), #L >= 2
 /// \throw InvalidInputError for mismatched shapes, fewer than 2 points or all points of Q coincident

@@ -4,9 +4,9 @@
 #include <string>
 
 #include "core/errors.h"
-#include "render/bitmap_font.h"
 #include "render/colour_maps.h"
 #include "render/rasterize.h"
+#include "render/text.h"
 
 namespace liftmap {
 namespace {
@@ -81,7 +81,7 @@ Image render_map_figure(const FigurePanel& a, const FigurePanel& b, const MapFig
 
   const int scale = options.height >= 600 ? 3 : 2;
   const Eigen::Vector3d ink(0.2, 0.2, 0.2);
-  const int y = options.height - (kGlyphHeight + 4) * scale;
+  const int y = options.height - (kTextHeight + 4) * scale;
   draw_text(figure, (half - text_width(a.label, scale)) / 2, y, a.label, ink, scale);
   draw_text(figure, half + (options.width - half - text_width(b.label, scale)) / 2, y, b.label, ink, scale);
   return figure;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "render/bitmap_font.h"
+#include "render/text.h"
 
 namespace liftmap {
 namespace {
@@ -104,7 +104,7 @@ Image render_histogram(const Eigen::VectorXd& values, const Eigen::VectorXd& wei
 
   const int s = 2;  // font scale
   const int left = 30 + text_width("00.0", s) + 14, right = options.width - 30;
-  const int top = 24 + 3 * kGlyphHeight * s, bottom = options.height - 30 - 2 * kGlyphHeight * s - 10;
+  const int top = 24 + 3 * kTextHeight * s, bottom = options.height - 30 - 2 * kTextHeight * s - 10;
   auto to_x = [&](double x) {
     return left + static_cast<int>(std::lround((x - x_min) / (x_max - x_min) * (right - left)));
   };
@@ -127,7 +127,7 @@ Image render_histogram(const Eigen::VectorXd& values, const Eigen::VectorXd& wei
   // Axes, ticks and tick labels.
   horizontal_line(image, left, right, bottom, 2, ink);
   vertical_line(image, left, top, bottom, 2, ink);
-  const int glyph_h = kGlyphAscent * s;
+  const int glyph_h = kTextAscent * s;
   for (double t = x_min; t <= x_max + 1e-9 * x_max; t += x_step) {
     const int x = to_x(t);
     vertical_line(image, x, bottom, bottom + 6, 2, ink);

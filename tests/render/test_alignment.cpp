@@ -36,6 +36,28 @@ TEST(RenderAlignSimilarity, NeverReflects) {
   EXPECT_GT(s.scale, 0.0);
 }
 
+TEST(RenderAlignSimilarity, TwoPointsAreMatchedExactly) {
+  // Any two distinct points map onto any two others; the rotation about their line is free.
+  const Eigen::MatrixXd P = (Eigen::MatrixXd(2, 3) << 1, 2, 3, -1, 0, 2).finished();
+  const Eigen::MatrixXd Q = (Eigen::MatrixXd(2, 3) << 0, 0, 0, 0, 4, 0).finished();
+  const SimilarityTransform s = align_similarity(P, Q);
+  EXPECT_NEAR(s.R.determinant(), 1.0, 1e-12);
+  EXPECT_LT((s.R * s.R.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+  EXPECT_NEAR(s.scale, 3.0 / 4.0, 1e-12);  // |P_0 - P_1| = 3, |Q_0 - Q_1| = 4
+  EXPECT_LT((s.apply(Q) - P).norm(), 1e-12);
+}
+
+TEST(RenderAlignSimilarity, CoincidentTargetsGiveScaleZero) {
+  // Every source point best maps onto the one target point: scale 0, R the identity, t that point.
+  const Eigen::MatrixXd Q = Eigen::MatrixXd::Random(4, 3);
+  const Eigen::MatrixXd P = Eigen::RowVector3d(1.0, -2.0, 0.5).replicate(4, 1);
+  const SimilarityTransform s = align_similarity(P, Q);
+  EXPECT_EQ(s.scale, 0.0);
+  EXPECT_TRUE(s.R.isIdentity(0.0));
+  EXPECT_LT((s.t - Eigen::Vector3d(1.0, -2.0, 0.5)).norm(), 1e-12);
+  EXPECT_LT((s.apply(Q) - P).norm(), 1e-12);
+}
+
 TEST(RenderAlignSimilarity, RejectsBadInput) {
   EXPECT_THROW(align_similarity(Eigen::MatrixXd::Zero(3, 3), Eigen::MatrixXd::Zero(2, 3)), InvalidInputError);
   EXPECT_THROW(align_similarity(Eigen::MatrixXd::Zero(1, 3), Eigen::MatrixXd::Zero(1, 3)), InvalidInputError);
