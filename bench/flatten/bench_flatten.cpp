@@ -33,11 +33,11 @@ int main(int argc, char** argv) {
     const testing::TestDisk b = testing::deformed_copy(a);
     const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), {});
     std::vector<double> seconds;
-    BarrierResult r;
+    SubproblemResult r;
     for (int rep = 0; rep < 3; ++rep) {
       SparseCholesky chol;
       const auto t0 = std::chrono::steady_clock::now();
-      r = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol);
+      r = solve_convex_subproblem(jp.subproblem, jp.X0, SubproblemSettings{}, chol);
       seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     std::sort(seconds.begin(), seconds.end());
@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     export_subproblem(file, jp.subproblem, jp.X0, r);
     // One line per instance, read by bench/run.py: size, faces, our median time, objective, steps, gap bound, file.
     std::printf("instance %d faces %d %d ours_seconds %.6f objective %.12g newton_steps %d gap_bound %.2e file %s\n", n,
-                static_cast<int>(a.F.rows()), static_cast<int>(b.F.rows()), seconds[1], r.objective, r.newton_steps,
+                static_cast<int>(a.F.rows()), static_cast<int>(b.F.rows()), seconds[1], r.objective, r.iterations,
                 r.gap_bound, file.c_str());
     std::fflush(stdout);
   }

@@ -7,7 +7,7 @@
 // JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap); PROFILE_START_GAP_FRACTION=x sets
 // JointFlattenOptions::start_gap_fraction (0: every subproblem starts at the usual barrier parameter);
 // PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap; PROFILE_ISOTROPIC=0 turns off
-// BarrierOptions::isotropic_anticonformal_curvature; PROFILE_REMESH=0 turns off CutOptions::remesh;
+// BarrierSettings::isotropic_anticonformal_curvature; PROFILE_REMESH=0 turns off CutOptions::remesh;
 // PROFILE_START_STEPS=n sets JointFlattenOptions::start_optimization.max_iterations (0: off).
 
 #include <chrono>
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
 
   JointFlattenOptions options;
   if (argc > 4) options.max_iterations = std::atoi(argv[4]);
-  if (argc > 5) options.solver.barrier_growth = std::atof(argv[5]);
+  if (argc > 5) options.solver.barrier.barrier_growth = std::atof(argv[5]);
   if (argc > 6) options.solver.relative_gap = std::atof(argv[6]);
   if (const char* m = std::getenv("PROFILE_SOLVER"); m != nullptr && std::string(m) == "primal-dual") {
     options.method = SubproblemSolver::kPrimalDual;
@@ -59,9 +59,9 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_MAX_SUBPROBLEM_GAP")) options.max_subproblem_gap = std::atof(g);
   if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);
   if (const char* g = std::getenv("PROFILE_ISOTROPIC"))
-    options.solver.isotropic_anticonformal_curvature = std::atoi(g) != 0;
+    options.solver.barrier.isotropic_anticonformal_curvature = std::atoi(g) != 0;
   if (std::getenv("PROFILE_P_INF")) options.p = std::numeric_limits<double>::infinity();
-  if (const char* g = std::getenv("PROFILE_PD_REFINEMENTS")) options.solver.max_refinements = std::atoi(g);
+  if (const char* g = std::getenv("PROFILE_PD_REFINEMENTS")) options.solver.primal_dual.max_refinements = std::atoi(g);
   int outer = 1;
   struct Centring {
     int index = -1, steps = 0, damped = 0, repaired = 0;
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
         c.index, c.t, c.steps, c.damped, c.repaired, c.min_step, c.seconds, c.derivatives, c.factorization,
         c.line_search, c.objective);
   };
-  options.solver.on_step = [&](const BarrierStep& s) {
+  options.solver.on_step = [&](const SubproblemStep& s) {
     if (s.centring != c.index) {
       flush();
       if (s.centring < c.index) std::printf("outer iteration %d\n", ++outer);

@@ -42,7 +42,7 @@ using Mat7 = Eigen::Matrix<double, 7, 7>;
 using Mat62 = Eigen::Matrix<double, 6, 2>;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-/// BarrierOptions::centring_tolerance for p = inf, whose repaired steps need centrings closer to the central path:
+/// BarrierSettings::centring_tolerance for p = inf, whose repaired steps need centrings closer to the central path:
 /// at 2 (p = 2's), the p = inf instances of the differential test stopped short of their certified gap.
 constexpr double kPInfCentringTolerance = 0.125;
 /// Eigenvalue ratio below which a face's 4x4 Schur block counts as ill-conditioned (its product with the corner
@@ -181,14 +181,6 @@ void barrier_derivatives(const Vec7& q, double cs, double sn, bool ghost, double
   const Mat7 d2g3 = unit_e * dm.transpose() + dm * unit_e.transpose();
   add_log_barrier(e * m - 1, e * dm + m * unit_e, d2g3, grad, hess);
   if (s.p_inf) hess(kE, kE) = 1;  // e is unused
-}
-
-double face_energy(const Eigen::Vector4d& a, double cs, double sn, bool h_max) {
-  const double n = std::hypot(a(0), a(1));
-  const double c = std::hypot(a(2), a(3));
-  const double st = a(0) * cs + a(1) * sn - c;
-  if (!(st > 0)) return kInf;
-  return h_max ? std::max(n + c, 1.0 / st) : std::hypot(n + c, 1.0 / st);
 }
 
 // Centrings in a row that may stall (precision limit, no gap bound) before the method gives up on higher t.
@@ -440,511 +432,633 @@ double total_nu(const Setup& s) {
 
 }  // namespace
 
-double subproblem_objective(const ConvexSubproblem& problem, const Eigen::MatrixXd& X) {
-  const bool h_max = problem.h == DistortionCombiner::kMax;
-  double total = 0;
-  for (const SubproblemMesh& mesh : problem.meshes) {
-    double acc = 0;
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-      Vec6 u;
-      for (int k = 0; k < 3; ++k) u.segment<2>(2 * k) = X.row(mesh.slot[static_cast<size_t>(mesh.F(f, k))]).transpose();
-      const Eigen::Vector4d a = similarity_map(mesh.jacobian.G.row(f)) * u;
-      const double E = face_energy(a, std::cos(mesh.theta(f)), std::sin(mesh.theta(f)), h_max);
-      if (std::isinf(problem.p)) {
-        acc = std::max(acc, E);
-      } else {
-        acc += mesh.jacobian.area(f) * E * E;
-      }
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Newton's direction for t f0 + barrier: positions dx, auxiliaries dy (2 per face), epigraph variables d_t.
+struct NewtonDirection {
+  Eigen::VectorXd dx, dy;
+  std::array<double, 2> d_t{0, 0};
+};
+
+/// The state of one centring (Newton's method on t f0 + barrier at a fixed t).
+struct Centring {
+  /// Its nu / t can meet the gap (f0 only decreases during a centring): the only centring polished to
+  /// newton_tolerance. The others end, after one more step, once lambda^2 / 2 is below `tolerance`, because the
+  /// next barrier parameter starts with Newton decrements of ~1e7 anyway.
+  bool last = false;
+  double tolerance = 0;
+  /// This step's Newton system gives every face's (gamma, delta) block isotropic curvature (p = 2,
+  /// BarrierSettings::isotropic_anticonformal_curvature): set after a step that Armijo's condition shortened.
+  bool isotropic = false;
+  bool roughly_centred = false;
+  bool stalled = false;    ///< no step along the Newton direction decreased the merit before the tolerance
+  double end_lambda2 = 0;  ///< Newton decrement where the centring ended
+};
+
+/// How a Newton step of a centring ended.
+enum class StepEnd {
+  kNextStep,      ///< the centring goes on
+  kCentringEnds,  ///< centred (or stalled): the barrier parameter may grow
+  kMethodStops,   ///< the step cap or the precision limit of the factorisation: the method stops
+};
+
+/// Clamps the negative eigenvalues of a face's 4x4 Schur block Haa (rounding in the elimination of nearly active
+/// constraints) and returns its corner block S^T Haa S (6x6), cleaned again where Haa is ill-conditioned.
+/// Most blocks are well conditioned, which a Cholesky factorisation shows at a fraction of an eigensolver's cost:
+/// with det = prod(diag L)^2 and every eigenvalue at most the trace, lambda_min >= det / trace^3, so
+/// det >= kWellConditioned * trace^4 guarantees lambda_min >= kWellConditioned * lambda_max. Only the other blocks
+/// need eigenvalues, and their eigenvectors only if an eigenvalue is negative.
+Mat6 positive_corner_block(Eigen::Matrix4d Haa, const Mat46& S) {
+  bool well_conditioned = false;
+  {
+    const Eigen::LLT<Eigen::Matrix4d> haa_llt(Haa);
+    if (haa_llt.info() == Eigen::Success) {
+      const double d = haa_llt.matrixLLT().diagonal().prod();
+      const double tr = Haa.trace();
+      well_conditioned = d * d >= kWellConditioned * (tr * tr) * (tr * tr);
     }
-    total += std::isinf(problem.p) ? acc : std::sqrt(acc);
   }
-  return total;
+  if (well_conditioned) return S.transpose() * Haa * S;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Haa, Eigen::EigenvaluesOnly);
+  const Eigen::Vector4d lambda = eig.eigenvalues();
+  if (lambda(0) < 0) {
+    eig.compute(Haa);
+    Haa = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+  }
+  Mat6 K = S.transpose() * Haa * S;
+  if (lambda(0) < kWellConditioned * lambda(3)) {
+    // Ill-conditioned block: the product's rounding (relative to its largest entries) can again leave negative
+    // eigenvalues of a few percent of the smaller ones, enough to make the sum indefinite.
+    Eigen::SelfAdjointEigenSolver<Mat6> eig6(0.5 * (K + K.transpose()));
+    K = eig6.eigenvectors() * eig6.eigenvalues().cwiseMax(0.0).asDiagonal() * eig6.eigenvectors().transpose();
+  }
+  return K;
 }
 
-BarrierResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                      const BarrierOptions& options, SparseCholesky& cholesky,
-                                      subproblem::AssemblyStructure* cache) {
-  if (X0.rows() != problem.n_slots || X0.cols() != 2 || problem.n_slots < 2) {
-    throw InvalidInputError("convex subproblem: X0 must be #slots by 2");
-  }
-  Setup s = make_setup(problem);
-  const Settings& st = s.settings;
-  AssemblyStructure own;
-  AssemblyStructure& assembly = assembly_structure(s, cholesky, cache != nullptr ? *cache : own);
-  Pattern& pattern = assembly.pattern;
-  const FacePartition& parts = assembly.parts;
+/// The barrier method of barrier_solver.h (Boyd and Vandenberghe, Convex Optimization, §11.3): one object per
+/// solve, whose solve() is the method's loop: centre (Newton's method on t f0 + barrier), stop if the gap bound is
+/// met, increase t. A Newton step: the per-face derivatives with the auxiliaries eliminated, the Schur system
+/// assembled and factorised, the direction with the global coupling of (10a), the decrement, the line search.
+class BarrierSolver : SolverBase {
+ public:
+  BarrierSolver(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0, const SubproblemSettings& settings,
+                SparseCholesky& cholesky, AssemblyStructure* cache);
+  SubproblemResult solve();
 
-  // Strictly feasible start for the auxiliaries: c between |(gamma,delta)| and alpha cos + beta sin.
-  State z;
-  z.pos.resize(s.n_pos);
-  for (int i = 0; i < problem.n_slots; ++i) z.pos.segment<2>(2 * i) = X0.row(i).transpose();
-  z.c.resize(s.n_faces);
-  z.e.resize(s.n_faces);
-  z.T = {0, 0};
-  set_ghost_bounds(z.pos, s);
-  int first_infeasible = s.n_faces;
-#pragma omp parallel for schedule(static) reduction(min : first_infeasible) if (s.n_faces > kParallelFaces)
-  for (int j = 0; j < s.n_faces; ++j) {
-    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-    const Vec7 q = local_vars(s, z, j);
+ private:
+  // The start.
+  void start_auxiliaries(const Eigen::MatrixXd& X0);
+  void start_barrier_parameter();
+  [[nodiscard]] double centring_balance() const;
+
+  // The outer loop.
+  [[nodiscard]] Centring begin_centring() const;
+  bool centre(Centring& c);
+  bool end_centring(const Centring& c, bool stopped);
+  void increase_barrier_parameter();
+
+  // One Newton step.
+  StepEnd newton_step(Centring& c);
+  void epigraph_at_optimum();
+  void eliminate_face(int j, bool isotropic);
+  void assemble();
+  [[nodiscard]] NewtonDirection newton_direction();
+  void solve_bordered(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx,
+                      const Eigen::MatrixXd& Dy, NewtonDirection& d) const;
+  void solve_woodbury(const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx, const Eigen::MatrixXd& Dy,
+                      NewtonDirection& d) const;
+  void apply_pinv(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, Eigen::MatrixXd& Dx, Eigen::MatrixXd& Dy);
+  StepEnd line_search_step(Centring& c, const NewtonDirection& d, double lambda2, SubproblemStep& trace,
+                           Clock::time_point step_start, Clock::time_point& search_start);
+  double line_search(const NewtonDirection& d, double lambda2, bool repair, State& out, double& merit,
+                     bool& merit_limited) const;
+  void report(SubproblemStep& trace, Clock::time_point step_start, Clock::time_point search_start, double step,
+              bool repaired) const;
+  [[nodiscard]] double f0() const { return z_.T[0] + z_.T[1]; }
+
+  State z_;
+  double nu_ = 0;
+  double t_ = 0;
+
+  // This step's Newton system: per-face pieces, the assembled gradient, the epigraph variables' derivatives.
+  std::array<double, 2> sums_{0, 0};  // S_m at z_
+  std::array<double, 2> cone_{1, 1};  // p = 2: slacks T_m^2 - S_m of the objective cones
+  std::vector<FaceSystem> sys_;
+  std::vector<Eigen::Matrix<double, 6, 3>> corner_rows_;
+  Eigen::VectorXd gx_, gy_;
+  std::array<double, 2> g_t_{0, 0}, h_tt_{0, 0};
+  double last_shift_ = 0;  // relative diagonal shift of the last factorisation that needed one
+
+  State centred_;  // the iterate at the end of the last centring that ended centred, and its gap bound
+  double centred_gap_ = kInf;
+  int consecutive_stalls_ = 0;  // centrings in a row that stalled without a gap bound
+};
+
+BarrierSolver::BarrierSolver(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
+                             const SubproblemSettings& settings, SparseCholesky& cholesky, AssemblyStructure* cache)
+    : SolverBase(problem, X0, settings, cholesky, cache) {
+  start_auxiliaries(X0);
+  nu_ = total_nu(s_);
+  start_barrier_parameter();
+  sys_.resize(static_cast<size_t>(nf_));
+  corner_rows_.resize(static_cast<size_t>(nf_));
+}
+
+// Strictly feasible start for the auxiliaries: c between |(gamma,delta)| and alpha cos + beta sin.
+void BarrierSolver::start_auxiliaries(const Eigen::MatrixXd& X0) {
+  z_.pos = start_positions(X0);
+  z_.c.resize(nf_);
+  z_.e.resize(nf_);
+  z_.T = {0, 0};
+  int first_infeasible = nf_;
+#pragma omp parallel for schedule(static) reduction(min : first_infeasible) if (nf_ > kParallelFaces)
+  for (int j = 0; j < nf_; ++j) {
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    const Vec7 q = local_vars(s_, z_, j);
     const double cn = std::hypot(q(2), q(3));
     const double l = q(0) * fs.cs + q(1) * fs.sn;
     if (!(l - cn > 0)) {
       first_infeasible = std::min(first_infeasible, j);
       continue;
     }
-    z.c(j) = cn + 0.1 * (l - cn);
+    z_.c(j) = cn + 0.1 * (l - cn);
     if (fs.ghost()) {
-      z.e(j) = 0;
+      z_.e(j) = 0;
       continue;
     }
-    const double m = l - z.c(j);
+    const double m = l - z_.c(j);
     const double n = std::hypot(q(0), q(1));
-    z.e(j) = 1.5 * (st.h_max ? std::max(n + z.c(j), 1.0 / m) : std::hypot(n + z.c(j), 1.0 / m));
+    z_.e(j) = 1.5 * (st_.h_max ? std::max(n + z_.c(j), 1.0 / m) : std::hypot(n + z_.c(j), 1.0 / m));
   }
-  if (first_infeasible < s.n_faces) {
+  if (first_infeasible < nf_) {
     throw InvalidInputError("convex subproblem: the start is not strictly feasible (sigma_tilde <= 0 on face " +
                             std::to_string(first_infeasible) + ")");
   }
-  for (int j = 0; j < s.n_faces; ++j) {
-    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-    if (!fs.ghost()) z.T[static_cast<size_t>(fs.mesh)] = std::max(z.T[static_cast<size_t>(fs.mesh)], z.e(j));
+  for (int j = 0; j < nf_; ++j) {
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    if (!fs.ghost()) z_.T[static_cast<size_t>(fs.mesh)] = std::max(z_.T[static_cast<size_t>(fs.mesh)], z_.e(j));
   }
+}
 
-  const double nu = total_nu(s);
-  auto f0 = [&](const State& zz) { return zz.T[0] + zz.T[1]; };
-  // Start on the central path as nearly as a single t allows: t0 minimises |t grad f0 + grad barrier| in the
-  // directions where f0 varies (the e_j for p = 2, the T_m for p = inf).
-  const auto S_start = mesh_sums(s, z);
+// The t that best centres the start, -<grad f0, grad barrier> / |grad f0|^2 in the directions where f0 varies (the
+// e_j for p = 2, the T_m for p = inf); 0 if the barrier does not push against f0 there.
+double BarrierSolver::centring_balance() const {
+  const auto S_start = mesh_sums(s_, z_);
+  double gf_gphi = 0, gf_gf = 0, barrier_t = 0;
+#pragma omp parallel for schedule(static) reduction(+ : gf_gphi, gf_gf, barrier_t) if (nf_ > kParallelFaces)
+  for (int j = 0; j < nf_; ++j) {
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    if (fs.ghost()) continue;
+    Vec7 g;
+    Mat7 H;
+    barrier_derivatives(local_vars(s_, z_, j), fs.cs, fs.sn, false, 0.0, st_, g, H);
+    if (st_.p_inf) {
+      barrier_t += g(kT);
+    } else {
+      const double df = fs.w * z_.e(j) / std::sqrt(S_start[static_cast<size_t>(fs.mesh)]);
+      gf_gphi += df * g(kE);
+      gf_gf += df * df;
+    }
+  }
+  if (st_.p_inf) {
+    gf_gphi = barrier_t;
+    gf_gf = 2;
+  }
+  return gf_gphi < 0 ? -gf_gphi / gf_gf : 0.0;
+}
+
+// Start on the central path as nearly as a single t allows (centring_balance), then, for p = 2, initial_barrier_factor
+// times further and at least the t of initial_gap, with the epigraph variables and auxiliaries centred for it.
+void BarrierSolver::start_barrier_parameter() {
+  const auto S_start = mesh_sums(s_, z_);
   const double start_objective_2 = std::sqrt(S_start[0]) + std::sqrt(S_start[1]);  // (10a) at the start, p = 2
-  double t = nu / (st.p_inf ? f0(z) : start_objective_2);
-  {
-    double gf_gphi = 0, gf_gf = 0, barrier_t = 0;
-#pragma omp parallel for schedule(static) reduction(+ : gf_gphi, gf_gf, barrier_t) if (s.n_faces > kParallelFaces)
-    for (int j = 0; j < s.n_faces; ++j) {
-      const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      if (fs.ghost()) continue;
-      Vec7 g;
-      Mat7 H;
-      barrier_derivatives(local_vars(s, z, j), fs.cs, fs.sn, false, 0.0, st, g, H);
-      if (st.p_inf) {
-        barrier_t += g(kT);
-      } else {
-        const double df = fs.w * z.e(j) / std::sqrt(S_start[static_cast<size_t>(fs.mesh)]);
-        gf_gphi += df * g(kE);
-        gf_gf += df * df;
-      }
-    }
-    if (st.p_inf) {
-      gf_gphi = barrier_t;
-      gf_gf = 2;
-    }
-    if (gf_gphi < 0) t = -gf_gphi / gf_gf;
+  t_ = nu_ / (st_.p_inf ? f0() : start_objective_2);
+  const double balance = centring_balance();
+  if (balance > 0) t_ = balance;
+  if (st_.p_inf) return;
+  t_ *= settings_.barrier.initial_barrier_factor;
+  if (settings_.barrier.initial_gap > 0) t_ = std::max(t_, nu_ / (settings_.barrier.initial_gap * start_objective_2));
+  // The epigraph variable where the barrier's derivative in T_m balances t: t = 2 T_m / (T_m^2 - S_m). Its
+  // gradient in e_j is then 2 w_j e_j / (T_m^2 - S_m) ~ t w_j e_j / sqrt(S_m), that of t sqrt(S_m).
+  for (size_t m = 0; m < 2; ++m) z_.T[m] = optimal_epigraph(S_start[m], t_);
+  centre_all_auxiliaries(s_, t_, z_.T, z_);
+}
+
+SubproblemResult BarrierSolver::solve() {
+  for (;;) {
+    Centring c = begin_centring();
+    const bool stopped = !centre(c);
+    if (end_centring(c, stopped)) break;
+    increase_barrier_parameter();
   }
-  if (!st.p_inf) {
-    t *= options.initial_barrier_factor;
-    if (options.initial_gap > 0) {
-      t = std::max(t, nu / (options.initial_gap * start_objective_2));
+  return finish(z_.pos);
+}
+
+Centring BarrierSolver::begin_centring() const {
+  Centring c;
+  c.last = nu_ / t_ <= settings_.relative_gap * f0();
+  c.tolerance = st_.p_inf ? kPInfCentringTolerance : settings_.barrier.centring_tolerance;
+  return c;
+}
+
+// Newton's method on t f0 + barrier; false if the method must stop (step cap, precision limit).
+bool BarrierSolver::centre(Centring& c) {
+  for (;;) {
+    if (result_.iterations >= settings_.max_iterations) {
+      result_.status = SubproblemStatus::kIterationLimit;
+      return false;
     }
-    // The epigraph variable where the barrier's derivative in T_m balances t: t = 2 T_m / (T_m^2 - S_m). Its
-    // gradient in e_j is then 2 w_j e_j / (T_m^2 - S_m) ~ t w_j e_j / sqrt(S_m), that of t sqrt(S_m).
-    for (size_t m = 0; m < 2; ++m) z.T[m] = optimal_epigraph(S_start[m], t);
-    centre_all_auxiliaries(s, t, z.T, z);
-  }
-
-  std::vector<FaceSystem> sys(static_cast<size_t>(s.n_faces));
-  BarrierResult result;
-  const int nv = s.n_var;
-  const int nf = s.n_faces;
-
-  // Applies P^{-1} to the three columns (R_x; R_y) (the gradient and the two coupling columns of (10a)), where P is
-  // the Hessian without the global coupling; Y is 2 nf rows.
-  using Cols3 = Eigen::Matrix<double, 6, 3>;
-  std::vector<Cols3> corner_rows(static_cast<size_t>(nf));
-  auto apply_pinv = [&](const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, Eigen::MatrixXd& Dx,
-                        Eigen::MatrixXd& Dy) {
-    assert(Rx.cols() == 3 && Ry.cols() == 3);
-#pragma omp parallel for schedule(static) if (nf > kParallelFaces)
-    for (int j = 0; j < nf; ++j) {
-      const FaceSystem& fsys = sys[static_cast<size_t>(j)];
-      corner_rows[static_cast<size_t>(j)].noalias() = fsys.B * (fsys.Pinv * Ry.block<2, 3>(2 * j, 0));
-    }
-    Eigen::MatrixXd Rt = Rx;
-    subtract_corner_rows<3>(s, parts, corner_rows, Rt);
-    Dx = cholesky.solve(Rt);
-    Dy.resize(2 * nf, 3);
-#pragma omp parallel for schedule(static) if (nf > kParallelFaces)
-    for (int j = 0; j < nf; ++j) {
-      const FaceSystem& fsys = sys[static_cast<size_t>(j)];
-      const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-      const Cols3 dxl = gather_corners<3>(fs, Dx);
-      Dy.block<2, 3>(2 * j, 0).noalias() = fsys.Pinv * (Ry.block<2, 3>(2 * j, 0) - fsys.B.transpose() * dxl);
-    }
-  };
-
-  State centred;  // the iterate at the end of the last centring that ended centred, and its gap bound
-  double centred_gap = kInf;
-  int consecutive_stalls = 0;  // centrings in a row that stalled without a gap bound
-  bool done = false;
-  double last_shift = 0;  // relative diagonal shift of the last factorisation that needed one
-  while (!done) {
-    // Centring: Newton's method on t f0 + barrier.
-    bool stalled = false;
-    double end_lambda2 = 0;  // Newton decrement where the centring ended
-    // Only the last centring, the one whose nu / t can meet the gap (f0 only decreases during a centring), is
-    // centred to newton_tolerance: the others end, after one more step, once lambda^2 / 2 is below
-    // centring_tolerance, because the next barrier parameter starts with Newton decrements of ~1e7 anyway.
-    const bool last_centring = nu / t <= options.relative_gap * f0(z);
-    bool roughly_centred = false;
-    const double centring_tolerance = st.p_inf ? kPInfCentringTolerance : options.centring_tolerance;
-    // This step's Newton system gives every face's (gamma, delta) block isotropic curvature (p = 2,
-    // BarrierOptions::isotropic_anticonformal_curvature): set after a step that Armijo's condition shortened.
-    bool isotropic = false;
-    for (;;) {
-      if (result.newton_steps >= options.max_newton_steps) {
-        done = true;
-        break;
-      }
-      const auto step_start = std::chrono::steady_clock::now();
-      BarrierStep trace{.centring = result.centrings, .t = t, .isotropic = isotropic};
-      auto search_start = step_start;  // set when the line search starts
-      auto report = [&](double step, bool repaired) {
-        if (!options.on_step) return;
-        trace.step = step;
-        trace.repaired = repaired;
-        trace.objective = f0(z);
-        const auto now = std::chrono::steady_clock::now();
-        trace.seconds = std::chrono::duration<double>(now - step_start).count();
-        trace.seconds_line_search =
-            search_start == step_start ? 0.0 : std::chrono::duration<double>(now - search_start).count();
-        options.on_step(trace);
-      };
-      const auto S = mesh_sums(s, z);
-      // p = 2: the epigraph variables at their optimum for this t, and the slacks T_m^2 - S_m of their cones.
-      std::array<double, 2> cone{1, 1};
-      if (!st.p_inf) {
-        for (size_t m = 0; m < 2; ++m) {
-          z.T[m] = optimal_epigraph(S[m], t);
-          cone[m] = 2 * z.T[m] / t;
-        }
-      }
-#pragma omp parallel for schedule(static) if (nf > kParallelFaces)
-      for (int j = 0; j < nf; ++j) {
-        const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-        FaceSystem& fsys = sys[static_cast<size_t>(j)];
-        const Vec7 q = local_vars(s, z, j);
-        Vec7 g;
-        Mat7 H;
-        barrier_derivatives(q, fs.cs, fs.sn, fs.ghost(), fs.bound, st, g, H);
-        if (!st.p_inf && !fs.ghost()) {
-          // The objective cone's barrier, its per-face part: the diagonal of its Hessian in e_j. The rank-one
-          // part couples the faces and is added by Woodbury below.
-          const double gm = cone[static_cast<size_t>(fs.mesh)];
-          g(kE) += 2 * fs.w * q(kE) / gm;
-          H(kE, kE) += 2 * fs.w / gm;
-        }
-        const Eigen::Matrix2d Pyy = H.block<2, 2>(kC, kC);
-        fsys.Pinv = Pyy.inverse();
-        fsys.Pinv = 0.5 * (fsys.Pinv + fsys.Pinv.transpose());
-        const Eigen::Matrix<double, 4, 2> Hay = H.block<4, 2>(kA, kC);
-        // Schur complement Haa - Hay Pyy^-1 Hay^T with the subtracted term formed as W^T W, W = L^-1 Hay^T
-        // (Pyy = L L^T): symmetric and positive semidefinite by construction. Pyy's entries span up to 20
-        // orders of magnitude on nearly active faces, and the plain product with its inverse is then neither.
-        Eigen::Matrix4d Haa = H.block<4, 4>(kA, kA);
-        const Eigen::LLT<Eigen::Matrix2d> pyy_llt(Pyy);
-        if (pyy_llt.info() == Eigen::Success) {
-          const Eigen::Matrix<double, 2, 4> W = pyy_llt.matrixL().solve(Hay.transpose());
-          Haa -= W.transpose() * W;
-        } else {
-          Haa -= Hay * fsys.Pinv * Hay.transpose();
-        }
-        Haa = 0.5 * (Haa + Haa.transpose());
-        if (isotropic && !fs.ghost()) {
-          // Raise the smaller curvature of the (gamma, delta) block to the larger one, which makes the block its
-          // largest eigenvalue times the identity: it only grows (stays positive semidefinite), so the step is
-          // still a descent direction.
-          const Eigen::Matrix2d G = Haa.block<2, 2>(2, 2);
-          const double half = 0.5 * G.trace();
-          const double lmax = half + std::sqrt(std::max(0.0, half * half - G.determinant()));
-          if (lmax > 0) Haa.block<2, 2>(2, 2) = lmax * Eigen::Matrix2d::Identity();
-        }
-        // The exact Schur complement is positive semidefinite; rounding in the elimination of nearly active
-        // constraints (huge, nearly cancelling terms) can leave negative eigenvalues: clamp them. Most blocks are
-        // well conditioned, which a Cholesky factorisation shows at a fraction of an eigensolver's cost: with
-        // det = prod(diag L)^2 and every eigenvalue at most the trace, lambda_min >= det / trace^3, so
-        // det >= kWellConditioned * trace^4 guarantees lambda_min >= kWellConditioned * lambda_max. Only the
-        // other blocks need eigenvalues, and their eigenvectors only if an eigenvalue is negative.
-        bool well_conditioned = false;
-        {
-          const Eigen::LLT<Eigen::Matrix4d> haa_llt(Haa);
-          if (haa_llt.info() == Eigen::Success) {
-            const double d = haa_llt.matrixLLT().diagonal().prod();
-            const double tr = Haa.trace();
-            well_conditioned = d * d >= kWellConditioned * (tr * tr) * (tr * tr);
-          }
-        }
-        if (well_conditioned) {
-          fsys.K = fs.S.transpose() * Haa * fs.S;
-        } else {
-          Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Haa, Eigen::EigenvaluesOnly);
-          const Eigen::Vector4d lambda = eig.eigenvalues();
-          if (lambda(0) < 0) {
-            eig.compute(Haa);
-            Haa = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
-          }
-          fsys.K = fs.S.transpose() * Haa * fs.S;
-          if (lambda(0) < kWellConditioned * lambda(3)) {
-            // Ill-conditioned block: the product's rounding (relative to its largest entries) can again leave
-            // negative eigenvalues of a few percent of the smaller ones, enough to make the sum indefinite.
-            Eigen::SelfAdjointEigenSolver<Mat6> eig6(0.5 * (fsys.K + fsys.K.transpose()));
-            fsys.K =
-                eig6.eigenvectors() * eig6.eigenvalues().cwiseMax(0.0).asDiagonal() * eig6.eigenvectors().transpose();
-          }
-        }
-        fsys.B = fs.S.transpose() * Hay;
-        fsys.gx = fs.S.transpose() * g.head<4>();
-        fsys.gy = g.segment<2>(kC);
-        fsys.hyT = H.block<2, 1>(kC, kT);
-        fsys.hxT = fs.S.transpose() * H.block<4, 1>(kA, kT);
-        fsys.h_tt = H(kT, kT);
-        fsys.g_t = g(kT);
-      }
-      // Assemble the Schur system and the gradient: the faces of the two halves of the factorisation's split on two
-      // threads (FacePartition), the rest after them.
-      double* values = pattern.A.valuePtr();
-      const Eigen::Index n_values = pattern.A.nonZeros();
-#pragma omp parallel for schedule(static) if (n_values > 100000)
-      for (Eigen::Index k = 0; k < n_values; ++k) values[k] = 0;
-      Eigen::VectorXd gx = Eigen::VectorXd::Zero(nv);
-      Eigen::VectorXd gy(2 * nf);
-      std::array<std::array<double, 2>, 3> list_g_t{}, list_h_tt{};  // per face list, summed in list order below
-      for_each_face_partitioned(parts, [&](int j, int list) {
-        const FaceSystem& fsys = sys[static_cast<size_t>(j)];
-        const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-        const auto& idx = pattern.index[static_cast<size_t>(j)];
-        for (int r = 0; r < 6; ++r) {
-          const int v = fs.var[static_cast<size_t>(r)];
-          if (v >= 0) gx(v) += fsys.gx(r);
-          for (int c = 0; c < 6; ++c) {
-            const int i = idx[static_cast<size_t>(6 * r + c)];
-            if (i >= 0) values[i] += fsys.K(r, c);
-          }
-        }
-        gy.segment<2>(2 * j) = fsys.gy;
-        if (fs.ghost()) return;
-        list_g_t[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.g_t;
-        list_h_tt[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.h_tt;
-      });
-      std::array<double, 2> g_t{t, t}, h_tt{0, 0};
-      for (size_t list = 0; list < 3; ++list) {
-        for (size_t m = 0; m < 2; ++m) {
-          g_t[m] += list_g_t[list][m];
-          h_tt[m] += list_h_tt[list][m];
-        }
-      }
-      if (!st.p_inf) {  // derivatives of t T_m - log(T_m^2 - S_m) in T_m (the first is 0 at the optimal T_m)
-        for (size_t m = 0; m < 2; ++m) {
-          g_t[m] = 0;
-          h_tt[m] = 2 * (z.T[m] * z.T[m] + S[m]) / (cone[m] * cone[m]);
-        }
-      }
-      const auto factor_start = std::chrono::steady_clock::now();
-      trace.seconds_derivatives = std::chrono::duration<double>(factor_start - step_start).count();
-      if (!factorize_with_shift(cholesky, pattern.A, last_shift)) {
-        // Numerical limit of double precision reached: the iterate is strictly feasible; stop here and let the
-        // caller judge the gap bound.
-        done = true;
-        break;
-      }
-
-      // Newton direction, with the global coupling of (10a) handled on top of P^{-1}.
-      Eigen::MatrixXd Rx(nv, 3), Ry(2 * nf, 3);
-      Rx.setZero();
-      Ry.setZero();
-      Rx.col(0) = -gx;
-      Ry.col(0) = -gy;
-      for (int j = 0; j < nf; ++j) {
-        const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-        if (fs.ghost()) continue;
-        const int col = 1 + fs.mesh;
-        if (st.p_inf) {
-          Ry.block<2, 1>(2 * j, col) = sys[static_cast<size_t>(j)].hyT;
-          for (int r = 0; r < 6; ++r) {
-            const int v = fs.var[static_cast<size_t>(r)];
-            if (v >= 0) Rx(v, col) += sys[static_cast<size_t>(j)].hxT(r);
-          }
-        } else {  // the rank-one part v_m v_m^T of the objective cone's Hessian, v_m = 2 w_j e_j / cone_m
-          Ry(2 * j + 1, col) = 2 * fs.w * z.e(j) / cone[static_cast<size_t>(fs.mesh)];
-        }
-      }
-      Eigen::MatrixXd Dx, Dy;
-      trace.seconds_factorization =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - factor_start).count();
-      apply_pinv(Rx, Ry, Dx, Dy);
-      Eigen::VectorXd dx = Dx.col(0), dy = Dy.col(0);
-      std::array<double, 2> d_t{0, 0};
-      if (st.p_inf) {
-        // Bordered system [[P, Q], [Q^T, h_tt]]: Schur complement on the two epigraph variables.
-        Eigen::Matrix2d M;
-        Eigen::Vector2d rhs;
-        for (int a = 0; a < 2; ++a) {
-          rhs(a) = -g_t[static_cast<size_t>(a)] - Rx.col(1 + a).dot(Dx.col(0)) - Ry.col(1 + a).dot(Dy.col(0));
-          for (int b = 0; b < 2; ++b) {
-            M(a, b) = (a == b ? h_tt[static_cast<size_t>(a)] : 0.0) - Rx.col(1 + a).dot(Dx.col(1 + b)) -
-                      Ry.col(1 + a).dot(Dy.col(1 + b));
-          }
-        }
-        const Eigen::Vector2d sol = M.ldlt().solve(rhs);
-        d_t = {sol(0), sol(1)};
-        dx -= Dx.middleCols(1, 2) * sol;
-        dy -= Dy.middleCols(1, 2) * sol;
-      } else {
-        // The Hessian is A = P + V V^T (V = [v_0 v_1], Woodbury: A^-1 V = Z M^-1 with Z = P^-1 V, M = I + V^T Z,
-        // which is >= I: no cancellation) bordered by the T_m, whose coupling column with the e_j is
-        // beta_m v_m, beta_m = -2 T_m / cone_m. Eliminate the (positions, auxiliaries) block, solve the 2x2
-        // system in (dT_0, dT_1), then back-substitute.
-        Eigen::Matrix2d G;
-        Eigen::Vector2d vtz;
-        for (int a = 0; a < 2; ++a) {
-          vtz(a) = Ry.col(1 + a).dot(Dy.col(0));
-          for (int b = 0; b < 2; ++b) G(a, b) = Ry.col(1 + a).dot(Dy.col(1 + b));
-        }
-        G = 0.5 * (G + G.transpose());
-        const Eigen::Matrix2d Minv = (Eigen::Matrix2d::Identity() + G).inverse();
-        const Eigen::Matrix2d GM = G * Minv;         // V^T A^-1 V
-        const Eigen::Vector2d vta = vtz - GM * vtz;  // V^T A^-1 (-g)
-        const Eigen::Vector2d beta(-2 * z.T[0] / cone[0], -2 * z.T[1] / cone[1]);
-        Eigen::Matrix2d Sc;
-        Eigen::Vector2d rhs;
-        for (int a = 0; a < 2; ++a) {
-          rhs(a) = -g_t[static_cast<size_t>(a)] - beta(a) * vta(a);
-          for (int b = 0; b < 2; ++b)
-            Sc(a, b) = (a == b ? h_tt[static_cast<size_t>(a)] : 0.0) - beta(a) * beta(b) * GM(a, b);
-        }
-        const Eigen::Vector2d ds = Sc.ldlt().solve(rhs);
-        d_t = {ds(0), ds(1)};
-        const Eigen::Vector2d coef = Minv * (vtz + beta.cwiseProduct(ds));
-        dx -= Dx.middleCols(1, 2) * coef;
-        dy -= Dy.middleCols(1, 2) * coef;
-      }
-      const double lambda2 = -(gx.dot(dx) + gy.dot(dy)) - (g_t[0] * d_t[0] + g_t[1] * d_t[1]);
-      if (!std::isfinite(lambda2)) throw PipelineError("convex subproblem: the Newton step is not finite");
-      ++result.newton_steps;
-      trace.lambda2 = lambda2;
-      end_lambda2 = std::abs(lambda2);
-      if (lambda2 < 0) {
-        // Not a descent direction: the Newton system lost its precision. Never read this as convergence, unless
-        // the decrement is rounding noise within the precision tolerance.
-        stalled = -lambda2 / 2 > options.precision_tolerance;
-        report(0, false);
-        break;
-      }
-      if (isotropic && lambda2 / 2 <= centring_tolerance) {
-        // The decrement of a modified system certifies nothing: redo the step with the true Newton system.
-        isotropic = false;
+    switch (newton_step(c)) {
+      case StepEnd::kNextStep:
         continue;
-      }
-      if (lambda2 / 2 <= options.newton_tolerance ||
-          (last_centring && lambda2 / 2 <= centring_tolerance &&
-           gap_bound(nu, std::sqrt(lambda2), t) <= options.relative_gap * f0(z))) {
-        report(0, false);
-        break;
-      }
-      roughly_centred = !isotropic && !last_centring && lambda2 / 2 <= centring_tolerance;
-
-      // Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds.
-      // p = 2: the positions' step with the auxiliaries re-centred at each trial point (step_state_2), which lets
-      // the positions take steps 5-10 times longer than with the linearly extrapolated auxiliaries.
-      // p = inf: first along the plain Newton direction; if that stops short, also with the auxiliaries repaired
-      // (step_state_inf), where only the positions limit the step, and keep the point of lower merit.
-      search_start = std::chrono::steady_clock::now();
-      bool merit_limited = false;  // the trial before the accepted one failed Armijo's condition, not feasibility
-      auto line_search = [&](bool repair, State& out, double& merit) {
-        double step = 1;
-        for (int halvings = 0; halvings < 60; ++halvings, step *= 0.5) {
-          const bool ok = st.p_inf ? step_state_inf(s, z, dx, dy, d_t, step, repair, out)
-                                   : step_state_2(s, z, dx, dy, step, t, out);
-          if (!ok) {
-            merit_limited = false;
-            continue;
-          }
-          merit = merit_difference(s, z, out, t);
-          if (merit <= -0.25 * step * lambda2) return step;
-          merit_limited = true;
-        }
-        return 0.0;
-      };
-      State zn;
-      double merit = 0;
-      bool repaired = !st.p_inf;
-      double step = line_search(repaired, zn, merit);
-      if (st.p_inf && step < 1.0 / 64) {  // crawling: the auxiliaries, not the positions, block the step
-        State zr;
-        double merit_r = 0;
-        const double step_r = line_search(true, zr, merit_r);
-        if (step_r > 0 && (step == 0 || merit_r < merit)) {
-          zn = std::move(zr);
-          step = step_r;
-          repaired = true;
-        }
-      }
-      if (step == 0 || (step < 1 && lambda2 / 2 <= options.precision_tolerance)) {
-        // No progress possible at this precision: so close to the central point (Newton decrement below the
-        // precision tolerance, where a full Newton step is accepted in exact arithmetic) that only rounding
-        // shortens the step, the centring has done its job; further steps crawl at 1e-7 (seen on camel-cow).
-        // Farther away, a failed line search means the centring stalled.
-        stalled = !roughly_centred && lambda2 / 2 > options.precision_tolerance;
-        if (step > 0) z = std::move(zn);
-        report(step, false);
-        break;
-      }
-      // p = 2: step_state_2 centred the accepted point's auxiliaries with the coefficients t / T_m of the previous
-      // point, then set T_m to the optimum for the new S_m. Centring them again with the new T_m (as this did until
-      // 22eff18) cost a tenth of the time and saved no Newton steps: camel-cow, alternating runs of 2 outer
-      // iterations, 10.45 / 11.47 s with it against 9.34 / 10.37 s without, steps 75 + 52 against 74 + 53, energies
-      // equal to 7 digits.
-      z = std::move(zn);
-      report(step, repaired);
-      isotropic = options.isotropic_anticonformal_curvature && !st.p_inf && step < 1 && merit_limited;
-      if (roughly_centred) break;
+      case StepEnd::kCentringEnds:
+        return true;
+      case StepEnd::kMethodStops:
+        return false;
     }
-    ++result.centrings;
-    if (stalled) ++result.stalled_centrings;
-    // Gap bound at a point whose Newton decrement is lambda < 1 (exactly nu / t on the central path).
-    const double gap = gap_bound(nu, std::sqrt(end_lambda2), t);
-    result.gap_bound = gap;
-    if (done) break;
-    if (gap <= options.relative_gap * f0(z)) {
-      // The bound holds only near a central point: a last centring that stalled certifies nothing.
-      result.converged = !stalled;
-      break;
-    }
-    consecutive_stalls = stalled && !std::isfinite(gap) ? consecutive_stalls + 1 : 0;
-    if (!stalled && std::isfinite(gap)) {
-      centred = z;
-      centred_gap = gap;
-    }
-    if (consecutive_stalls >= kMaxConsecutiveStalls && std::isfinite(centred_gap)) {
-      // The Newton systems are beyond the limit of double precision and a higher t does not bring them back (a
-      // 500-face instance went on stalling to t = 1e139, where the Newton step overflowed). A single stall can
-      // pass: the next centring may end centred again. Return the last centred point with its bound.
-      z = std::move(centred);
-      result.gap_bound = centred_gap;
-      break;
-    }
-    // The next barrier parameter: barrier_growth times this one, but (p = 2) not beyond the one whose central point
-    // meets the gap with room for the decrement's term, and at least twice this one. Overshooting by up to 20x
-    // put the last centring deeper into the precision limit than needed: a 500-face instance stalled there. For
-    // p = inf, whose repairs are sensitive to the schedule, the shorter last step cost camel_cow_pinf_max 22 more
-    // Newton steps (to the cap of 400).
-    const double t_meet = nu / (0.5 * options.relative_gap * f0(z));
-    t *= st.p_inf ? options.barrier_growth : std::clamp(t_meet / t, 2.0, std::max(2.0, options.barrier_growth));
   }
+}
 
-  result.X.resize(problem.n_slots, 2);
-  for (int i = 0; i < problem.n_slots; ++i) result.X.row(i) = z.pos.segment<2>(2 * i).transpose();
-  result.objective = subproblem_objective(problem, result.X);
-  return result;
+// The centring's gap bound; true if the method ends: stopped, converged, or stalled for good.
+bool BarrierSolver::end_centring(const Centring& c, bool stopped) {
+  ++result_.centrings;
+  if (c.stalled) ++result_.stalled_centrings;
+  // Gap bound at a point whose Newton decrement is lambda < 1 (exactly nu / t on the central path).
+  const double gap = gap_bound(nu_, std::sqrt(c.end_lambda2), t_);
+  result_.gap_bound = gap;
+  if (stopped) return true;
+  if (gap <= settings_.relative_gap * f0()) {
+    // The bound holds only near a central point: a last centring that stalled certifies nothing.
+    result_.status = c.stalled ? SubproblemStatus::kStalled : SubproblemStatus::kConverged;
+    return true;
+  }
+  consecutive_stalls_ = c.stalled && !std::isfinite(gap) ? consecutive_stalls_ + 1 : 0;
+  if (!c.stalled && std::isfinite(gap)) {
+    centred_ = z_;
+    centred_gap_ = gap;
+  }
+  if (consecutive_stalls_ >= kMaxConsecutiveStalls && std::isfinite(centred_gap_)) {
+    // The Newton systems are beyond the limit of double precision and a higher t does not bring them back (a
+    // 500-face instance went on stalling to t = 1e139, where the Newton step overflowed). A single stall can
+    // pass: the next centring may end centred again. Return the last centred point with its bound.
+    z_ = std::move(centred_);
+    result_.gap_bound = centred_gap_;
+    result_.status = SubproblemStatus::kStalled;
+    return true;
+  }
+  return false;
+}
+
+// The next barrier parameter: barrier_growth times this one, but (p = 2) not beyond the one whose central point
+// meets the gap with room for the decrement's term, and at least twice this one. Overshooting by up to 20x put the
+// last centring deeper into the precision limit than needed: a 500-face instance stalled there. For p = inf, whose
+// repairs are sensitive to the schedule, the shorter last step cost camel_cow_pinf_max 22 more Newton steps (to the
+// cap of 400).
+void BarrierSolver::increase_barrier_parameter() {
+  const double t_meet = nu_ / (0.5 * settings_.relative_gap * f0());
+  t_ *= st_.p_inf ? settings_.barrier.barrier_growth
+                  : std::clamp(t_meet / t_, 2.0, std::max(2.0, settings_.barrier.barrier_growth));
+}
+
+void BarrierSolver::report(SubproblemStep& trace, Clock::time_point step_start, Clock::time_point search_start,
+                           double step, bool repaired) const {
+  if (!settings_.on_step) return;
+  trace.step = step;
+  trace.repaired = repaired;
+  trace.objective = f0();
+  const auto now = Clock::now();
+  trace.seconds = std::chrono::duration<double>(now - step_start).count();
+  trace.seconds_line_search =
+      search_start == step_start ? 0.0 : std::chrono::duration<double>(now - search_start).count();
+  settings_.on_step(trace);
+}
+
+// p = 2: the epigraph variables at their optimum for this t, and the slacks T_m^2 - S_m of their cones.
+void BarrierSolver::epigraph_at_optimum() {
+  sums_ = mesh_sums(s_, z_);
+  cone_ = {1, 1};
+  if (st_.p_inf) return;
+  for (size_t m = 0; m < 2; ++m) {
+    z_.T[m] = optimal_epigraph(sums_[m], t_);
+    cone_[m] = 2 * z_.T[m] / t_;
+  }
+}
+
+// Face j's derivatives of the barrier (plus, p = 2, the per-face part of the objective cone's barrier: the diagonal
+// of its Hessian in e_j; the rank-one part couples the faces and is added by Woodbury in newton_direction), with its
+// auxiliaries (c, e) eliminated: the corner block K of the Schur system, the coupling B, and the gradients.
+void BarrierSolver::eliminate_face(int j, bool isotropic) {
+  const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+  FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+  const Vec7 q = local_vars(s_, z_, j);
+  Vec7 g;
+  Mat7 H;
+  barrier_derivatives(q, fs.cs, fs.sn, fs.ghost(), fs.bound, st_, g, H);
+  if (!st_.p_inf && !fs.ghost()) {
+    const double gm = cone_[static_cast<size_t>(fs.mesh)];
+    g(kE) += 2 * fs.w * q(kE) / gm;
+    H(kE, kE) += 2 * fs.w / gm;
+  }
+  const Eigen::Matrix2d Pyy = H.block<2, 2>(kC, kC);
+  fsys.Pinv = Pyy.inverse();
+  fsys.Pinv = 0.5 * (fsys.Pinv + fsys.Pinv.transpose());
+  const Eigen::Matrix<double, 4, 2> Hay = H.block<4, 2>(kA, kC);
+  // Schur complement Haa - Hay Pyy^-1 Hay^T with the subtracted term formed as W^T W, W = L^-1 Hay^T (Pyy = L L^T):
+  // symmetric and positive semidefinite by construction. Pyy's entries span up to 20 orders of magnitude on nearly
+  // active faces, and the plain product with its inverse is then neither.
+  Eigen::Matrix4d Haa = H.block<4, 4>(kA, kA);
+  const Eigen::LLT<Eigen::Matrix2d> pyy_llt(Pyy);
+  if (pyy_llt.info() == Eigen::Success) {
+    const Eigen::Matrix<double, 2, 4> W = pyy_llt.matrixL().solve(Hay.transpose());
+    Haa -= W.transpose() * W;
+  } else {
+    Haa -= Hay * fsys.Pinv * Hay.transpose();
+  }
+  Haa = 0.5 * (Haa + Haa.transpose());
+  if (isotropic && !fs.ghost()) {
+    // Raise the smaller curvature of the (gamma, delta) block to the larger one, which makes the block its largest
+    // eigenvalue times the identity: it only grows (stays positive semidefinite), so the step is still a descent
+    // direction.
+    const Eigen::Matrix2d G = Haa.block<2, 2>(2, 2);
+    const double half = 0.5 * G.trace();
+    const double lmax = half + std::sqrt(std::max(0.0, half * half - G.determinant()));
+    if (lmax > 0) Haa.block<2, 2>(2, 2) = lmax * Eigen::Matrix2d::Identity();
+  }
+  fsys.K = positive_corner_block(Haa, fs.S);
+  fsys.B = fs.S.transpose() * Hay;
+  fsys.gx = fs.S.transpose() * g.head<4>();
+  fsys.gy = g.segment<2>(kC);
+  fsys.hyT = H.block<2, 1>(kC, kT);
+  fsys.hxT = fs.S.transpose() * H.block<4, 1>(kA, kT);
+  fsys.h_tt = H(kT, kT);
+  fsys.g_t = g(kT);
+}
+
+// Assembles the Schur system and the gradient: the faces of the two halves of the factorisation's split on two
+// threads (FacePartition), the rest after them; then the epigraph variables' derivatives.
+void BarrierSolver::assemble() {
+  Pattern& pattern = assembly_->pattern;
+  double* values = pattern.A.valuePtr();
+  const Eigen::Index n_values = pattern.A.nonZeros();
+#pragma omp parallel for schedule(static) if (n_values > 100000)
+  for (Eigen::Index k = 0; k < n_values; ++k) values[k] = 0;
+  gx_ = Eigen::VectorXd::Zero(nv_);
+  gy_.resize(2 * nf_);
+  std::array<std::array<double, 2>, 3> list_g_t{}, list_h_tt{};  // per face list, summed in list order below
+  for_each_face_partitioned(assembly_->parts, [&](int j, int list) {
+    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    const auto& idx = pattern.index[static_cast<size_t>(j)];
+    for (int r = 0; r < 6; ++r) {
+      const int v = fs.var[static_cast<size_t>(r)];
+      if (v >= 0) gx_(v) += fsys.gx(r);
+      for (int c = 0; c < 6; ++c) {
+        const int i = idx[static_cast<size_t>(6 * r + c)];
+        if (i >= 0) values[i] += fsys.K(r, c);
+      }
+    }
+    gy_.segment<2>(2 * j) = fsys.gy;
+    if (fs.ghost()) return;
+    list_g_t[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.g_t;
+    list_h_tt[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.h_tt;
+  });
+  g_t_ = {t_, t_};
+  h_tt_ = {0, 0};
+  for (size_t list = 0; list < 3; ++list) {
+    for (size_t m = 0; m < 2; ++m) {
+      g_t_[m] += list_g_t[list][m];
+      h_tt_[m] += list_h_tt[list][m];
+    }
+  }
+  if (!st_.p_inf) {  // derivatives of t T_m - log(T_m^2 - S_m) in T_m (the first is 0 at the optimal T_m)
+    for (size_t m = 0; m < 2; ++m) {
+      g_t_[m] = 0;
+      h_tt_[m] = 2 * (z_.T[m] * z_.T[m] + sums_[m]) / (cone_[m] * cone_[m]);
+    }
+  }
+}
+
+// Applies P^{-1} to the three columns (R_x; R_y) (the gradient and the two coupling columns of (10a)), where P is the
+// Hessian without the global coupling; Ry is 2 nf rows.
+void BarrierSolver::apply_pinv(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, Eigen::MatrixXd& Dx,
+                               Eigen::MatrixXd& Dy) {
+  assert(Rx.cols() == 3 && Ry.cols() == 3);
+#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
+  for (int j = 0; j < nf_; ++j) {
+    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+    corner_rows_[static_cast<size_t>(j)].noalias() = fsys.B * (fsys.Pinv * Ry.block<2, 3>(2 * j, 0));
+  }
+  Eigen::MatrixXd Rt = Rx;
+  subtract_corner_rows<3>(s_, assembly_->parts, corner_rows_, Rt);
+  Dx = cholesky_.solve(Rt);
+  Dy.resize(2 * nf_, 3);
+#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
+  for (int j = 0; j < nf_; ++j) {
+    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    const Eigen::Matrix<double, 6, 3> dxl = gather_corners<3>(fs, Dx);
+    Dy.block<2, 3>(2 * j, 0).noalias() = fsys.Pinv * (Ry.block<2, 3>(2 * j, 0) - fsys.B.transpose() * dxl);
+  }
+}
+
+// p = inf: the bordered system [[P, Q], [Q^T, h_tt]]: Schur complement on the two epigraph variables.
+void BarrierSolver::solve_bordered(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx,
+                                   const Eigen::MatrixXd& Dy, NewtonDirection& d) const {
+  Eigen::Matrix2d M;
+  Eigen::Vector2d rhs;
+  for (int a = 0; a < 2; ++a) {
+    rhs(a) = -g_t_[static_cast<size_t>(a)] - Rx.col(1 + a).dot(Dx.col(0)) - Ry.col(1 + a).dot(Dy.col(0));
+    for (int b = 0; b < 2; ++b) {
+      M(a, b) = (a == b ? h_tt_[static_cast<size_t>(a)] : 0.0) - Rx.col(1 + a).dot(Dx.col(1 + b)) -
+                Ry.col(1 + a).dot(Dy.col(1 + b));
+    }
+  }
+  const Eigen::Vector2d sol = M.ldlt().solve(rhs);
+  d.d_t = {sol(0), sol(1)};
+  d.dx -= Dx.middleCols(1, 2) * sol;
+  d.dy -= Dy.middleCols(1, 2) * sol;
+}
+
+// p = 2: the Hessian is A = P + V V^T (V = [v_0 v_1], Woodbury: A^-1 V = Z M^-1 with Z = P^-1 V, M = I + V^T Z,
+// which is >= I: no cancellation) bordered by the T_m, whose coupling column with the e_j is beta_m v_m,
+// beta_m = -2 T_m / cone_m. Eliminate the (positions, auxiliaries) block, solve the 2x2 system in (dT_0, dT_1), then
+// back-substitute.
+void BarrierSolver::solve_woodbury(const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx, const Eigen::MatrixXd& Dy,
+                                   NewtonDirection& d) const {
+  Eigen::Matrix2d G;
+  Eigen::Vector2d vtz;
+  for (int a = 0; a < 2; ++a) {
+    vtz(a) = Ry.col(1 + a).dot(Dy.col(0));
+    for (int b = 0; b < 2; ++b) G(a, b) = Ry.col(1 + a).dot(Dy.col(1 + b));
+  }
+  G = 0.5 * (G + G.transpose());
+  const Eigen::Matrix2d Minv = (Eigen::Matrix2d::Identity() + G).inverse();
+  const Eigen::Matrix2d GM = G * Minv;         // V^T A^-1 V
+  const Eigen::Vector2d vta = vtz - GM * vtz;  // V^T A^-1 (-g)
+  const Eigen::Vector2d beta(-2 * z_.T[0] / cone_[0], -2 * z_.T[1] / cone_[1]);
+  Eigen::Matrix2d Sc;
+  Eigen::Vector2d rhs;
+  for (int a = 0; a < 2; ++a) {
+    rhs(a) = -g_t_[static_cast<size_t>(a)] - beta(a) * vta(a);
+    for (int b = 0; b < 2; ++b)
+      Sc(a, b) = (a == b ? h_tt_[static_cast<size_t>(a)] : 0.0) - beta(a) * beta(b) * GM(a, b);
+  }
+  const Eigen::Vector2d ds = Sc.ldlt().solve(rhs);
+  d.d_t = {ds(0), ds(1)};
+  const Eigen::Vector2d coef = Minv * (vtz + beta.cwiseProduct(ds));
+  d.dx -= Dx.middleCols(1, 2) * coef;
+  d.dy -= Dy.middleCols(1, 2) * coef;
+}
+
+// The Newton direction, with the global coupling of (10a) handled on top of P^{-1}: P^-1 applied to the gradient and
+// the two coupling columns in one solve (p = inf: H's blocks between T_m and the rest; p = 2: the rank-one part
+// v_m v_m^T of the objective cone's Hessian, v_m = 2 w_j e_j / cone_m).
+NewtonDirection BarrierSolver::newton_direction() {
+  Eigen::MatrixXd Rx(nv_, 3), Ry(2 * nf_, 3);
+  Rx.setZero();
+  Ry.setZero();
+  Rx.col(0) = -gx_;
+  Ry.col(0) = -gy_;
+  for (int j = 0; j < nf_; ++j) {
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    if (fs.ghost()) continue;
+    const int col = 1 + fs.mesh;
+    if (st_.p_inf) {
+      Ry.block<2, 1>(2 * j, col) = sys_[static_cast<size_t>(j)].hyT;
+      for (int r = 0; r < 6; ++r) {
+        const int v = fs.var[static_cast<size_t>(r)];
+        if (v >= 0) Rx(v, col) += sys_[static_cast<size_t>(j)].hxT(r);
+      }
+    } else {
+      Ry(2 * j + 1, col) = 2 * fs.w * z_.e(j) / cone_[static_cast<size_t>(fs.mesh)];
+    }
+  }
+  Eigen::MatrixXd Dx, Dy;
+  apply_pinv(Rx, Ry, Dx, Dy);
+  NewtonDirection d;
+  d.dx = Dx.col(0);
+  d.dy = Dy.col(0);
+  if (st_.p_inf) {
+    solve_bordered(Rx, Ry, Dx, Dy, d);
+  } else {
+    solve_woodbury(Ry, Dx, Dy, d);
+  }
+  return d;
+}
+
+StepEnd BarrierSolver::newton_step(Centring& c) {
+  const auto step_start = Clock::now();
+  SubproblemStep trace{.centring = result_.centrings, .t = t_, .isotropic = c.isotropic};
+  auto search_start = step_start;  // set when the line search starts
+  epigraph_at_optimum();
+#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
+  for (int j = 0; j < nf_; ++j) eliminate_face(j, c.isotropic);
+  assemble();
+  const auto factor_start = Clock::now();
+  trace.seconds_derivatives = std::chrono::duration<double>(factor_start - step_start).count();
+  // Numerical limit of double precision reached: the iterate is strictly feasible; stop here and let the caller
+  // judge the gap bound.
+  if (!factorize_with_shift(cholesky_, assembly_->pattern.A, last_shift_)) {
+    result_.status = SubproblemStatus::kNotFactorizable;
+    return StepEnd::kMethodStops;
+  }
+  trace.seconds_factorization = seconds_since(factor_start);
+  const NewtonDirection d = newton_direction();
+  const double lambda2 = -(gx_.dot(d.dx) + gy_.dot(d.dy)) - (g_t_[0] * d.d_t[0] + g_t_[1] * d.d_t[1]);
+  if (!std::isfinite(lambda2)) throw PipelineError("convex subproblem: the Newton step is not finite");
+  ++result_.iterations;
+  trace.lambda2 = lambda2;
+  c.end_lambda2 = std::abs(lambda2);
+  if (lambda2 < 0) {
+    // Not a descent direction: the Newton system lost its precision. Never read this as convergence, unless the
+    // decrement is rounding noise within the precision tolerance.
+    c.stalled = -lambda2 / 2 > settings_.barrier.precision_tolerance;
+    report(trace, step_start, search_start, 0, false);
+    return StepEnd::kCentringEnds;
+  }
+  if (c.isotropic && lambda2 / 2 <= c.tolerance) {
+    // The decrement of a modified system certifies nothing: redo the step with the true Newton system.
+    c.isotropic = false;
+    return StepEnd::kNextStep;
+  }
+  if (lambda2 / 2 <= settings_.barrier.newton_tolerance ||
+      (c.last && lambda2 / 2 <= c.tolerance &&
+       gap_bound(nu_, std::sqrt(lambda2), t_) <= settings_.relative_gap * f0())) {
+    report(trace, step_start, search_start, 0, false);
+    return StepEnd::kCentringEnds;
+  }
+  c.roughly_centred = !c.isotropic && !c.last && lambda2 / 2 <= c.tolerance;
+  return line_search_step(c, d, lambda2, trace, step_start, search_start);
+}
+
+// Backtracking line search: halve until feasible, then until Armijo's condition on the merit holds; false in
+// merit_limited if the last rejected trial was feasible. p = 2: the positions' step with the auxiliaries re-centred
+// at each trial point (step_state_2), which lets the positions take steps 5-10 times longer than with the linearly
+// extrapolated auxiliaries. p = inf: along the plain Newton direction, or with the auxiliaries repaired
+// (step_state_inf) where only the positions limit the step. Returns the step (0: none found in 60 halvings).
+double BarrierSolver::line_search(const NewtonDirection& d, double lambda2, bool repair, State& out, double& merit,
+                                  bool& merit_limited) const {
+  double step = 1;
+  for (int halvings = 0; halvings < 60; ++halvings, step *= 0.5) {
+    const bool ok = st_.p_inf ? step_state_inf(s_, z_, d.dx, d.dy, d.d_t, step, repair, out)
+                              : step_state_2(s_, z_, d.dx, d.dy, step, t_, out);
+    if (!ok) {
+      merit_limited = false;
+      continue;
+    }
+    merit = merit_difference(s_, z_, out, t_);
+    if (merit <= -0.25 * step * lambda2) return step;
+    merit_limited = true;
+  }
+  return 0.0;
+}
+
+// The step along d: the line search (p = inf: also with repaired auxiliaries if the plain one crawls, keeping the
+// point of lower merit), then the move, or the end of the centring if no progress is possible.
+StepEnd BarrierSolver::line_search_step(Centring& c, const NewtonDirection& d, double lambda2, SubproblemStep& trace,
+                                        Clock::time_point step_start, Clock::time_point& search_start) {
+  search_start = Clock::now();
+  bool merit_limited = false;  // the trial before the accepted one failed Armijo's condition, not feasibility
+  State zn;
+  double merit = 0;
+  bool repaired = !st_.p_inf;
+  double step = line_search(d, lambda2, repaired, zn, merit, merit_limited);
+  if (st_.p_inf && step < 1.0 / 64) {  // crawling: the auxiliaries, not the positions, block the step
+    State zr;
+    double merit_r = 0;
+    const double step_r = line_search(d, lambda2, true, zr, merit_r, merit_limited);
+    if (step_r > 0 && (step == 0 || merit_r < merit)) {
+      zn = std::move(zr);
+      step = step_r;
+      repaired = true;
+    }
+  }
+  if (step == 0 || (step < 1 && lambda2 / 2 <= settings_.barrier.precision_tolerance)) {
+    // No progress possible at this precision: so close to the central point (Newton decrement below the precision
+    // tolerance, where a full Newton step is accepted in exact arithmetic) that only rounding shortens the step,
+    // the centring has done its job; further steps crawl at 1e-7 (seen on camel-cow). Farther away, a failed line
+    // search means the centring stalled.
+    c.stalled = !c.roughly_centred && lambda2 / 2 > settings_.barrier.precision_tolerance;
+    if (step > 0) z_ = std::move(zn);
+    report(trace, step_start, search_start, step, false);
+    return StepEnd::kCentringEnds;
+  }
+  // p = 2: step_state_2 centred the accepted point's auxiliaries with the coefficients t / T_m of the previous point,
+  // then set T_m to the optimum for the new S_m (centring them again with the new T_m saved no Newton steps).
+  z_ = std::move(zn);
+  report(trace, step_start, search_start, step, repaired);
+  c.isotropic = settings_.barrier.isotropic_anticonformal_curvature && !st_.p_inf && step < 1 && merit_limited;
+  return c.roughly_centred ? StepEnd::kCentringEnds : StepEnd::kNextStep;
+}
+
+}  // namespace
+
+SubproblemResult solve_convex_subproblem(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
+                                         const SubproblemSettings& settings, SparseCholesky& cholesky,
+                                         subproblem::AssemblyStructure* cache) {
+  return solve_with<BarrierSolver>(problem, X0, settings, cholesky, cache);
 }
 
 }  // namespace liftmap

@@ -31,9 +31,7 @@ struct FaceAuxiliaries {
 /// u = c - lo is convex with a slope from -infinity at u = 0 to +infinity at the upper end of its interval. The
 /// root of the slope is found by Newton's method from the warm start inside a shrinking bracket (ghost faces and
 /// eq. 3, whose slope has a closed-form derivative), or, for eq. 2 and if Newton has not converged in 30 steps,
-/// bracketed from the warm start and found by TOMS 748 (Boost.Math). (A damped Newton iteration
-/// in (c, e), restarted in the middle of c's interval, stopped far from the optimum on faces whose optimal slack is
-/// ~1e-6 of it; on camel-cow such faces cost one centring 50 Newton steps instead of 12.)
+/// bracketed from the warm start and found by TOMS 748 (Boost.Math).
 /// \param c_warm a guess of c, used if it lies strictly inside c's interval
 /// \return false if c's interval is empty (the positions are infeasible: sigma_tilde <= 0, or a ghost face beyond
 /// its bound) or numerically too thin to hold a root.

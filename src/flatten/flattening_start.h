@@ -25,8 +25,6 @@ namespace liftmap {
 struct FlatteningStartOptions {
   /// Plain mean-value Tutte is kept if no face's share of the planar area is below this fraction of its share of
   /// the surface's area (faces that are small on the surface too, such as the cut's slivers, are not squeezed).
-  /// 1e-4 keeps it on sphere-ellipsoid and fandisk-bunny and drifts camel-cow's camel (1e-9: legs crushed) and
-  /// man-homer's man (1e-8), which then end lower (8.106 against 8.246, 6.9806 against 6.9818).
   double min_relative_area = 1e-4;
   std::vector<double> drifts{0.5, 1, 2, 3, 4, 6, 8};  ///< TutteWeights::drift values tried
 };

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "flatten/barrier_solver.h"
 #include "flatten/boundary_loop.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
@@ -306,10 +307,10 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     const auto t0 = std::chrono::steady_clock::now();
     place_ghost_vertices(sp, X);
     set_rotations(sp, X);
-    BarrierOptions solver = options.solver;
+    SubproblemSettings solver = options.solver;
     solver.relative_gap = subproblem_gap(options, res.iterations);
-    solver.initial_gap = start_gap(options, res.iterations);
-    BarrierResult br;
+    solver.barrier.initial_gap = start_gap(options, res.iterations);
+    SubproblemResult br;
     try {
       br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, solver, cholesky, &assembly)
                        : solve_convex_subproblem(sp, X, solver, cholesky, &assembly);
@@ -330,17 +331,18 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     if (br.objective > start_objective) {
       res.stop_reason = "the convex subproblem of outer iteration " + std::to_string(iter + 1) + " ended at " +
                         std::to_string(br.objective) + ", above its start's " + std::to_string(start_objective) + " (" +
-                        std::to_string(br.newton_steps) + " Newton steps, " +
-                        (br.converged ? "certified" : "not certified") + "); kept the flattenings of iteration " +
+                        std::to_string(br.iterations) + " Newton steps, " +
+                        (br.converged() ? "certified" : "not certified") + "); kept the flattenings of iteration " +
                         std::to_string(iter);
       break;
     }
     JointFlattenIteration it;
     it.subproblem_objective = br.objective;
     it.subproblem_gap = solver.relative_gap;
-    it.newton_steps = br.newton_steps;
-    it.subproblem_converged = br.converged;
+    it.newton_steps = br.iterations;
+    it.subproblem_converged = br.converged();
     it.stalled_centrings = br.stalled_centrings;
+    it.subproblem_status = br.status;
     try {
       record(br.X, it);
     } catch (const PipelineError& e) {  // the previous iterate passed these checks: it is the result
@@ -358,7 +360,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       // the optimum is at most its objective): keep the previous iterate, so that the energy never rises.
       res.stop_reason = "outer iteration " + std::to_string(iter + 1) + " raised the energy from " +
                         std::to_string(previous) + " to " + std::to_string(it.energy) + " (subproblem " +
-                        (br.converged ? "certified" : "not certified") + "); kept the flattenings of iteration " +
+                        (br.converged() ? "certified" : "not certified") + "); kept the flattenings of iteration " +
                         std::to_string(iter);
       if (options.keep_iterates) {
         res.Phi_iterates.pop_back();

@@ -3,13 +3,14 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/mesh.h"
-#include "flatten/barrier_solver.h"
 #include "flatten/distortion.h"
 #include "flatten/flattening_start.h"
+#include "flatten/subproblem.h"
 #include "flatten/symmetric_dirichlet.h"
 
 namespace liftmap {
@@ -26,11 +27,8 @@ struct JointFlattenIteration;
 
 /// The solver of the convex subproblems (10).
 enum class SubproblemSolver {
-  /// The barrier method for p = 2, the primal-dual method for p = inf. For p = inf the barrier method needs 166-210
-  /// Newton steps on the 300-face test patches (primal-dual: 24-30 iterations) and fails on camel-cow's first
-  /// subproblem (its Newton step overflows at t ~ 1e127), which the primal-dual method solves in 64 iterations. For
-  /// p = 2 the primal-dual method is about 2.5 times slower on camel-cow (42-67 iterations of 0.15-0.18 s against
-  /// 53-74 Newton steps of ~0.065 s).
+  /// The barrier method for p = 2, the primal-dual method for p = inf: each is the faster and the more robust one
+  /// there (docs/performance.md, "Barrier method settings").
   kAuto,
   kBarrier,     ///< solve_convex_subproblem (barrier_solver.h)
   kPrimalDual,  ///< solve_convex_subproblem_primal_dual (primal_dual_solver.h)
@@ -48,47 +46,25 @@ struct JointFlattenOptions {
   /// The convex subproblem solver. Its relative_gap is the finest gap any subproblem is solved to (see
   /// gap_fraction): 1e-5 is 100 times finer than the outer tolerance, and saves the last one or two centrings,
   /// which on whole-mesh disks run at the limits of double precision.
-  BarrierOptions solver{.relative_gap = 1e-5};
+  SubproblemSettings solver{.relative_gap = 1e-5};
   /// Each subproblem is solved to optimality within a certified relative gap that follows the outer loop's
   /// progress: gap_fraction times the relative decrease of the energy (8) in the previous outer iteration, clamped
   /// to [solver.relative_gap, max_subproblem_gap]; the first subproblem (from the Tutte start, which it improves
   /// by orders of magnitude) to max_subproblem_gap. A gap of a fraction of what the outer loop is about to gain
-  /// cannot change its course, and near convergence (gains near relative_tolerance) it is that fraction of the
-  /// stopping threshold. Camel-cow, first 4 outer iterations: gaps of 1e-3 instead of 1e-5 took 64 / 37 / 38 / 31
-  /// Newton steps instead of 74 / 53 / 52 / 45, with true energies (8) within 5e-5 relative (lower in iterations
-  /// 2-4). A third instead of a tenth (since the Delaunay flips of the cut; profile_flatten, 10 outer iterations at
-  /// most, Newton steps after the first subproblem): camel-cow 211 -> 185, man-homer 163 -> 123, fandisk-bunny 79
-  /// -> 89 (one more outer iteration, energy 6.5485 -> 6.5457), sphere-ellipsoid 82 -> 69; final energies within
-  /// 1.1e-5 relative otherwise (camel-cow 8.236900 -> 8.236990, man-homer 6.980516 -> 6.980520). Half: man-homer
-  /// 125, energies within 2e-5. 0: every subproblem to solver.relative_gap.
+  /// cannot change its course. 0: every subproblem to solver.relative_gap.
   double gap_fraction = 0.3;
-  /// The coarsest gap of gap_fraction's rule, and the first subproblem's. It was the outer tolerance (1e-3), which
-  /// for the first 4-5 outer iterations (relative gains of 1-10%) asked for gaps 10-100 times finer than a tenth
-  /// of the gain, one more centring each. 1e-2 against 1e-3, side by side (profile_flatten, 10 outer iterations):
-  /// camel-cow 17.0 against 20.3 s (final energy 8.110300 against 8.110642), man-homer 36.9 against 41.3 s
-  /// (7.015172 against 7.015201), fandisk-bunny (5 outer iterations either way) 36.9 against 45.9 s (6.555590
-  /// against 6.555573).
+  /// The coarsest gap of gap_fraction's rule, and the first subproblem's.
   double max_subproblem_gap = 1e-2;
   /// Barrier method, p = 2: every subproblem after the first starts at the barrier parameter whose gap bound is
   /// start_gap_fraction times the previous outer iteration's relative energy decrease (or at the usual, lower one;
-  /// BarrierOptions::initial_gap), instead of ~100 times the parameter that best centres the start. The start, the
-  /// previous minimiser, is within about that decrease of the new optimum; the usual first centring led back to a
-  /// point ~3% above it (camel-cow, f0 8.40 against 8.11) and the next two centrings forward again. Camel-cow,
-  /// 10 outer iterations: 379 -> 350 Newton steps; man-homer 505 -> 432; the same energies to 1e-6. 0: off.
-  /// Half of gap_fraction: the barrier parameter at which the barrier method's last centring meets the gap (it aims at
-  /// half the requested gap), so that each subproblem after the first is a single centring from the previous
-  /// minimiser. It was 1 (two centrings, the second at ~10 times the first's parameter). Since the Delaunay flips of
-  /// the cut, 1 -> 0.15, Newton steps after the first subproblem (profile_flatten, 10 outer iterations at most):
-  /// man-homer 123 -> 101 (per outer iteration, median 21 -> 16), fandisk-bunny 89 -> 58, sphere-ellipsoid 69 ->
-  /// 52, camel-cow 182 -> 192 (median 20 -> 21); final energies within 9e-6 relative. 0.3 and 0.1 gave man-homer
-  /// medians of 16 and 18, camel-cow 21 and 22.
+  /// BarrierSettings::initial_gap), instead of ~100 times the parameter that best centres the start: the start, the
+  /// previous minimiser, is within about that decrease of the new optimum. Half of gap_fraction, so that each
+  /// subproblem after the first is a single centring from the previous minimiser. 0: off.
   double start_gap_fraction = 0.15;
   SubproblemSolver method = SubproblemSolver::kAuto;
   /// A disk whose plain Tutte start squeezed a face (FlatteningStart::squeezed) has its drifted start lowered in
   /// the symmetric Dirichlet energy, boundary fixed, never flipping a face (minimize_symmetric_dirichlet);
-  /// max_iterations 0: off. L/C = 8 tentacle pair: start max distortion 4.7e4 -> 47, first subproblem 47 -> 29
-  /// Newton steps, energy after 10 outer iterations 14.52 -> 14.15. Applied to unsqueezed starts too, it ended
-  /// fandisk-bunny higher (6.54676 against 6.54573) and 23% slower (docs/algorithm.md).
+  /// max_iterations 0: off.
   SymmetricDirichletOptions start_optimization;
   /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
   /// they happen (progress reporting); empty: not called.
@@ -98,7 +74,7 @@ struct JointFlattenOptions {
 /// Whether joint_flatten solves its subproblems with the primal-dual method (else the barrier method).
 [[nodiscard]] bool uses_primal_dual(const JointFlattenOptions& options);
 
-/// The initial gap (BarrierOptions::initial_gap) of the next subproblem, given the iterates so far
+/// The initial gap (BarrierSettings::initial_gap) of the next subproblem, given the iterates so far
 /// (start_gap_fraction); 0 for the first subproblem, or when the last outer iteration gained nothing.
 [[nodiscard]] double start_gap(const JointFlattenOptions& options,
                                const std::vector<JointFlattenIteration>& iterations);
@@ -112,9 +88,10 @@ struct JointFlattenIteration {
   double subproblem_objective = 0;  ///< optimum of (10) found in this iteration (0 for the start)
   int newton_steps = 0;
   double subproblem_gap = 0;          ///< relative gap the subproblem was solved to (gap_fraction; 0 for the start)
-  bool subproblem_converged = false;  ///< the solver certified its gap bound (BarrierResult::converged)
-  int stalled_centrings = 0;          ///< BarrierResult::stalled_centrings
-  double seconds = 0;                 ///< wall time of this outer iteration (rotations + solve + checks)
+  bool subproblem_converged = false;  ///< the solver certified its gap bound (SubproblemResult::converged)
+  int stalled_centrings = 0;          ///< SubproblemResult::stalled_centrings
+  std::optional<SubproblemStatus> subproblem_status;  ///< why the subproblem's solve ended; none for the start
+  double seconds = 0;  ///< wall time of this outer iteration (rotations + solve + checks)
 };
 
 /// The relative gap joint_flatten solves its next subproblem to, given the iterates so far (gap_fraction).

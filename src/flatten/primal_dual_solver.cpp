@@ -39,8 +39,6 @@ constexpr int kProgressWindow = 5;
 /// Largest dual residual |A^T z - c|_inf of a solution (CVXOPT's default feasibility tolerance).
 constexpr double kDualTolerance = 1e-7;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
 /// A vector of every cone: the faces' cones (column j: face j, cone k in rows 3k .. 3k + dim - 1) and, for p = 2,
 /// the two objective cones. Slacks s, duals z and their scaled forms are such vectors.
 struct ConeVectors {
@@ -110,15 +108,14 @@ struct IterationState {
 /// method's loop (Vandenberghe 2010, §5; the steps as in CVXOPT's coneqp and ECOS): residuals and termination,
 /// Nesterov-Todd scalings and the eliminated Newton system, the affine (predictor) direction, the combined
 /// (Mehrotra corrector) direction, the step to the cones' boundary, and the step itself.
-class PrimalDualSolver {
+class PrimalDualSolver : SolverBase {
  public:
-  PrimalDualSolver(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0, const BarrierOptions& options,
+  PrimalDualSolver(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0, const SubproblemSettings& settings,
                    SparseCholesky& cholesky, AssemblyStructure* cache);
-  BarrierResult solve();
+  SubproblemResult solve();
 
  private:
   // The start.
-  void start_positions(const Eigen::MatrixXd& X0);
   void start_auxiliaries();
   void build_objective_cones(const std::array<double, 2>& e_max);
   void start_duals();
@@ -127,6 +124,7 @@ class PrimalDualSolver {
   bool slacks(const Iterate& x, ConeVectors& S) const;
   [[nodiscard]] Eigen::VectorXd objective_slack(const Iterate& x, size_t m) const;
   [[nodiscard]] Eigen::VectorXd objective_direction(const Unknowns& d, size_t m) const;
+  [[nodiscard]] ConeVectors slack_direction(const Unknowns& d) const;
   [[nodiscard]] VecL local_direction(const FaceSetup& fs, const Unknowns& d, int j) const;
   [[nodiscard]] std::array<double, 2> dual_t(const Iterate& x) const;
   [[nodiscard]] bool unused_auxiliary(int j, int a) const;
@@ -147,7 +145,7 @@ class PrimalDualSolver {
   double step_to_boundary(const Unknowns& d, const ConeVectors& U, ScaledDirection& sc) const;
   double take_step(const Unknowns& d, const ScaledDirection& sc, double step);
   bool dual_step(const ScaledDirection& sc, double step, Iterate& next) const;
-  BarrierResult finish();
+  SubproblemResult finish();
 
   // The Newton system H d = r.
   template <int NC>
@@ -161,14 +159,6 @@ class PrimalDualSolver {
   [[nodiscard]] double newton_residual(const Unknowns& d, const Unknowns& r, Unknowns& e) const;
   [[nodiscard]] Unknowns refine(Unknowns d, const Unknowns& r, double enough) const;
 
-  const BarrierOptions& options_;
-  SparseCholesky& cholesky_;
-  int n_slots_;
-  Setup s_;
-  const Settings& st_;
-  int nf_, nv_;
-  AssemblyStructure own_;
-  AssemblyStructure* assembly_ = nullptr;
   Iterate it_;
   std::vector<FaceCones> cones_;
   std::array<ObjectiveCone, 2> obj_;
@@ -194,27 +184,13 @@ class PrimalDualSolver {
   double best_gap_ = kInf;
   Eigen::VectorXd best_pos_;
   std::vector<std::pair<double, double>> history_;  // (gap, objective) at the start of every iteration
-  BarrierResult result_;
 };
 
-Setup checked_setup(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0) {
-  if (X0.rows() != problem.n_slots || X0.cols() != 2 || problem.n_slots < 2) {
-    throw InvalidInputError("convex subproblem: X0 must be #slots by 2");
-  }
-  return make_setup(problem);
-}
-
 PrimalDualSolver::PrimalDualSolver(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                   const BarrierOptions& options, SparseCholesky& cholesky, AssemblyStructure* cache)
-    : options_(options),
-      cholesky_(cholesky),
-      n_slots_(problem.n_slots),
-      s_(checked_setup(problem, X0)),
-      st_(s_.settings),
-      nf_(s_.n_faces),
-      nv_(s_.n_var) {
-  start_positions(X0);
-  assembly_ = &assembly_structure(s_, cholesky_, cache != nullptr ? *cache : own_);
+                                   const SubproblemSettings& settings, SparseCholesky& cholesky,
+                                   AssemblyStructure* cache)
+    : SolverBase(problem, X0, settings, cholesky, cache) {
+  it_.pos = start_positions(X0);
   start_auxiliaries();
   // The cones of every face (their rows depend only on the rotation and the ghost bound).
   cones_.resize(static_cast<size_t>(nf_));
@@ -225,12 +201,6 @@ PrimalDualSolver::PrimalDualSolver(const ConvexSubproblem& problem, const Eigen:
   start_duals();
   sys_.resize(static_cast<size_t>(nf_));
   best_pos_ = it_.pos;
-}
-
-void PrimalDualSolver::start_positions(const Eigen::MatrixXd& X0) {
-  it_.pos.resize(s_.n_pos);
-  for (int i = 0; i < n_slots_; ++i) it_.pos.segment<2>(2 * i) = X0.row(i).transpose();
-  set_ghost_bounds(it_.pos, s_);
 }
 
 // Strictly feasible start: every cone's slack well inside (each auxiliary 1.5 times its lower bound).
@@ -390,6 +360,27 @@ Eigen::VectorXd PrimalDualSolver::objective_direction(const Unknowns& d, size_t 
   return dso;
 }
 
+// A d per cone: the change of every cone's slack along the direction d (s = A x + b).
+ConeVectors PrimalDualSolver::slack_direction(const Unknowns& d) const {
+  ConeVectors ds;
+  ds.faces = FaceRows::Zero(kRows, nf_);
+#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
+  for (int j = 0; j < nf_; ++j) {
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    const FaceCones& fc = cones_[static_cast<size_t>(j)];
+    const VecL dl = local_direction(fs, d, j);
+    for (int k = 0; k < fc.n; ++k) {
+      const Cone& cone = fc.cone[static_cast<size_t>(k)];
+      const Eigen::Vector3d dsk = cone_value(cone, dl) - cone.b;
+      ds.faces.col(j).segment(3 * k, cone.dim) = dsk.head(cone.dim);
+    }
+  }
+  if (!st_.p_inf) {
+    for (size_t m = 0; m < 2; ++m) ds.objective[m] = objective_direction(d, m);
+  }
+  return ds;
+}
+
 // Auxiliary a (0..3: c, r, s, e) of face j appears in no cone: its row of the Newton system is a unit row.
 bool PrimalDualSolver::unused_auxiliary(int j, int a) const {
   if (a == 0) return false;
@@ -494,7 +485,7 @@ IterationState PrimalDualSolver::residuals() {
 }
 
 bool PrimalDualSolver::converged(const IterationState& is) const {
-  return is.gap <= options_.relative_gap * is.f0 && is.dual_residual <= kDualTolerance;
+  return is.gap <= settings_.relative_gap * is.f0 && is.dual_residual <= kDualTolerance;
 }
 
 // No progress over the window: the method stops at this strictly feasible iterate, uncertified (precision limit).
@@ -502,7 +493,7 @@ bool PrimalDualSolver::stalled(const IterationState& is) {
   history_.emplace_back(is.gap, is.f0);
   if (history_.size() <= kProgressWindow) return false;
   const auto [gap_then, f0_then] = history_[history_.size() - 1 - kProgressWindow];
-  return is.gap > 0.5 * gap_then && std::abs(is.f0 - f0_then) <= 0.1 * options_.relative_gap * is.f0;
+  return is.gap > 0.5 * gap_then && std::abs(is.f0 - f0_then) <= 0.1 * settings_.relative_gap * is.f0;
 }
 
 // Scalings of the objective cones (p = 2): their Hessian part is diag(w_j / beta^2) on the e_j (which joins the
@@ -745,29 +736,26 @@ Unknowns PrimalDualSolver::solve_newton(const Unknowns& r) const {
 // auxiliaries: the Newton matrix that the factorised Schur system, the Woodbury correction and the bordered 2 x 2
 // solve represent, without their cancellations.
 void PrimalDualSolver::apply_newton_matrix(const Unknowns& d, Unknowns& h) const {
+  const ConeVectors ds = slack_direction(d);
   ConeVectors V;
   V.faces = FaceRows::Zero(kRows, nf_);
 #pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
   for (int j = 0; j < nf_; ++j) {
-    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
     const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
     const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    const VecL dl = local_direction(fs, d, j);
     for (int k = 0; k < fc.n; ++k) {
-      const Cone& cone = fc.cone[static_cast<size_t>(k)];
       const soc::Scaling<3>& w = fsys.w[static_cast<size_t>(k)];
-      const Eigen::Vector3d dsk = cone_value(cone, dl) - cone.b;
-      if (cone.dim == 1) {
-        V.faces(3 * k, j) = dsk(0) / (w.beta * w.beta);
+      if (fc.cone[static_cast<size_t>(k)].dim == 1) {
+        V.faces(3 * k, j) = ds.faces(3 * k, j) / (w.beta * w.beta);
       } else {
+        const Eigen::Vector3d dsk = ds.faces.col(j).segment<3>(3 * k);
         V.faces.col(j).segment<3>(3 * k) = soc::apply_w_inverse<3>(w, soc::apply_w_inverse<3>(w, dsk));
       }
     }
   }
   if (!st_.p_inf) {
     for (size_t m = 0; m < 2; ++m) {
-      const Eigen::VectorXd dso = objective_direction(d, m);
-      V.objective[m] = soc::apply_w_inverse(w_obj_[m], soc::apply_w_inverse(w_obj_[m], dso));
+      V.objective[m] = soc::apply_w_inverse(w_obj_[m], soc::apply_w_inverse(w_obj_[m], ds.objective[m]));
     }
   }
   adjoint(V, h);
@@ -788,17 +776,17 @@ double PrimalDualSolver::newton_residual(const Unknowns& d, const Unknowns& r, U
 }
 
 // Iterative refinement of a solve of H d = r: d += solve(r - H d) while the residual, computed from the cones
-// (apply_newton_matrix), is above `enough` and shrinks at least by half, at most options.max_refinements times.
-// The factorised system loses precision to the elimination of nearly active cones (W^-2 with eigenvalues
-// ~ wbar_0^2 and ~ 1 / wbar_0^2), to the Woodbury correction and to CHOLMOD's diagonal shifts; without refinement
-// the dual residual grew from 1e-9 to 1e-4 in the last iterations and the method stalled at relative gaps of 1e-5,
-// at a level set by the BLAS kernel's rounding. The residual of the Newton equation becomes the dual residual after
-// a full step, so `enough` is a hundredth of the dual tolerance: most solves, early in a subproblem, need no
-// refinement and cost one product with H.
+// (apply_newton_matrix), is above `enough` and shrinks at least by half, at most settings.primal_dual.max_refinements
+// times. The factorised system loses precision to the elimination of nearly active cones (W^-2 with eigenvalues ~
+// wbar_0^2 and ~ 1 / wbar_0^2), to the Woodbury correction and to CHOLMOD's diagonal shifts; without refinement the
+// dual residual grew from 1e-9 to 1e-4 in the last iterations and the method stalled at relative gaps of 1e-5, at a
+// level set by the BLAS kernel's rounding. The residual of the Newton equation becomes the dual residual after a full
+// step, so `enough` is a hundredth of the dual tolerance: most solves, early in a subproblem, need no refinement and
+// cost one product with H.
 Unknowns PrimalDualSolver::refine(Unknowns d, const Unknowns& r, double enough) const {
   Unknowns e;
   double norm = newton_residual(d, r, e);
-  for (int k = 0; k < options_.max_refinements && norm > enough; ++k) {
+  for (int k = 0; k < settings_.primal_dual.max_refinements && norm > enough; ++k) {
     const Unknowns c = solve_newton(e);
     Unknowns next = d;
     next.x += c.x;
@@ -900,27 +888,25 @@ ConeVectors PrimalDualSolver::corrector_target(const ScaledDirection& aff, doubl
 // The scaled directions of a solve d: ds~ = W^-1 A dx and dz~ = W dz = U - ds~ per cone (U = lambda \ xi - lambda,
 // the right-hand side of W dz + W^-1 ds); returns the largest step that keeps s and z in their cones.
 double PrimalDualSolver::step_to_boundary(const Unknowns& d, const ConeVectors& U, ScaledDirection& sc) const {
+  const ConeVectors ds = slack_direction(d);
   sc.ds.faces.setZero(kRows, nf_);
   sc.dz.faces.setZero(kRows, nf_);
   double amax = kInf;
 #pragma omp parallel for schedule(static) reduction(min : amax) if (nf_ > kParallelFaces)
   for (int j = 0; j < nf_; ++j) {
-    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
     const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
     const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    const VecL dl = local_direction(fs, d, j);
     for (int k = 0; k < fc.n; ++k) {
-      const Cone& cone = fc.cone[static_cast<size_t>(k)];
-      const Eigen::Vector3d dsk = cone_value(cone, dl) - cone.b;
-      if (cone.dim == 1) {
+      if (fc.cone[static_cast<size_t>(k)].dim == 1) {
         const double lam = fsys.lambda(3 * k);
-        const double dst = dsk(0) / fsys.w[static_cast<size_t>(k)].beta;
+        const double dst = ds.faces(3 * k, j) / fsys.w[static_cast<size_t>(k)].beta;
         const double dzt = U.faces(3 * k, j) - dst;
         sc.ds.faces(3 * k, j) = dst;
         sc.dz.faces(3 * k, j) = dzt;
         amax = std::min({amax, soc::max_step_linear(lam, dst), soc::max_step_linear(lam, dzt)});
       } else {
         const Eigen::Vector3d lam = fsys.lambda.segment<3>(3 * k);
+        const Eigen::Vector3d dsk = ds.faces.col(j).segment<3>(3 * k);
         const Eigen::Vector3d dst = soc::apply_w_inverse(fsys.w[static_cast<size_t>(k)], dsk);
         const Eigen::Vector3d dzt = U.faces.col(j).segment<3>(3 * k) - dst;
         sc.ds.faces.col(j).segment<3>(3 * k) = dst;
@@ -931,8 +917,7 @@ double PrimalDualSolver::step_to_boundary(const Unknowns& d, const ConeVectors& 
   }
   if (!st_.p_inf) {
     for (size_t m = 0; m < 2; ++m) {
-      const Eigen::VectorXd dso = objective_direction(d, m);
-      sc.ds.objective[m] = soc::apply_w_inverse(w_obj_[m], dso);
+      sc.ds.objective[m] = soc::apply_w_inverse(w_obj_[m], ds.objective[m]);
       sc.dz.objective[m] = U.objective[m] - sc.ds.objective[m];
       amax = std::min(
           {amax, soc::max_step(lambda_obj_[m], sc.ds.objective[m]), soc::max_step(lambda_obj_[m], sc.dz.objective[m])});
@@ -991,26 +976,26 @@ double PrimalDualSolver::take_step(const Unknowns& d, const ScaledDirection& sc,
   }
 }
 
-BarrierResult PrimalDualSolver::solve() {
-  for (int iter = 0; iter < options_.max_newton_steps; ++iter) {
+SubproblemResult PrimalDualSolver::solve() {
+  for (int iter = 0; iter < settings_.max_iterations; ++iter) {
     const auto step_start = Clock::now();
-    BarrierStep trace;
+    SubproblemStep trace;
     const IterationState is = residuals();
     trace.centring = iter;
     trace.t = 1 / is.mu;
     trace.objective = is.f0;
     if (converged(is)) {
-      result_.converged = true;
+      result_.status = SubproblemStatus::kConverged;
       break;
     }
     if (stalled(is)) {
-      result_.stalled_centrings = 1;
+      result_.status = SubproblemStatus::kStalled;
       break;
     }
     const auto factor_start = Clock::now();
     trace.seconds_derivatives = std::chrono::duration<double>(factor_start - step_start).count();
     if (!factor_system()) {
-      result_.stalled_centrings = 1;
+      result_.status = SubproblemStatus::kNotFactorizable;
       break;
     }
     trace.seconds_factorization = seconds_since(factor_start);
@@ -1032,42 +1017,37 @@ BarrierResult PrimalDualSolver::solve() {
     const auto search_start = Clock::now();
     const double step = take_step(d, sc, full_step);
     trace.seconds_line_search = seconds_since(search_start);
-    ++result_.newton_steps;
+    ++result_.iterations;
     trace.step = step;
     trace.lambda2 = is.dual_residual;
     trace.seconds = seconds_since(step_start);
     // Steps this short twice in a row: the directions have reached the limit of double precision.
     short_steps_ = step < kShortStep ? short_steps_ + 1 : 0;
     if (step == 0 || short_steps_ == 2) {
-      if (options_.on_step) options_.on_step(trace);
-      result_.stalled_centrings = 1;
+      if (settings_.on_step) settings_.on_step(trace);
+      result_.status = SubproblemStatus::kStalled;
       break;
     }
     trace.objective = it_.T[0] + it_.T[1];
-    if (options_.on_step) options_.on_step(trace);
+    if (settings_.on_step) settings_.on_step(trace);
   }
   return finish();
 }
 
 // Converged: the current iterate is the best certified one. Otherwise the best certified one, whose gap is the
 // honest bound (+infinity if no iterate was dual feasible).
-BarrierResult PrimalDualSolver::finish() {
+SubproblemResult PrimalDualSolver::finish() {
   result_.gap_bound = best_gap_;
   const Eigen::VectorXd& pos = std::isfinite(best_gap_) ? best_pos_ : it_.pos;
-  result_.X.resize(n_slots_, 2);
-  for (int i = 0; i < n_slots_; ++i) result_.X.row(i) = pos.segment<2>(2 * i).transpose();
-  return result_;
+  return SolverBase::finish(pos);
 }
 
 }  // namespace
 
-BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                                  const BarrierOptions& options, SparseCholesky& cholesky,
-                                                  subproblem::AssemblyStructure* cache) {
-  PrimalDualSolver solver(problem, X0, options, cholesky, cache);
-  BarrierResult result = solver.solve();
-  result.objective = subproblem_objective(problem, result.X);
-  return result;
+SubproblemResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
+                                                     const SubproblemSettings& settings, SparseCholesky& cholesky,
+                                                     subproblem::AssemblyStructure* cache) {
+  return solve_with<PrimalDualSolver>(problem, X0, settings, cholesky, cache);
 }
 
 }  // namespace liftmap

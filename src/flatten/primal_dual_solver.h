@@ -4,8 +4,8 @@
 
 #include <Eigen/Core>
 
-#include "flatten/barrier_solver.h"
 #include "flatten/sparse_cholesky.h"
+#include "flatten/subproblem.h"
 
 namespace liftmap {
 
@@ -21,22 +21,21 @@ namespace liftmap {
 /// and its residual shrinks by (1 - step) per iteration. Each iteration factorises ONE sparse SPD matrix in the vertex
 /// coordinates (the per-face auxiliaries eliminated by their Schur complements, the global coupling of (10a) by a
 /// bordered system and a Woodbury correction) and solves it twice (predictor, corrector).
-/// Every Newton solve is iteratively refined against H = A^T W^-2 A formed cone by cone, so that the dual residual
-/// stays at the level of rounding instead of growing with the conditioning of the eliminated system.
-/// Stops when the gap s^T z is below `relative_gap` times the objective and the dual residual |A^T z - c| is below
-/// 1e-7 of the size of its terms (converged = true). Stops uncertified (converged = false, stalled_centrings = 1) at
-/// the limit of double precision: two steps in a row shorter than 1e-3, no progress over five iterations, or a
-/// Newton system that no longer factorises; for p = 2 this happens near relative gaps of 1e-7 (the objective cones
-/// nearly active), for p = inf near 1e-8..1e-9 (docs/performance.md). It then returns the dual-feasible iterate
-/// with the smallest gap, and gap_bound is that iterate's gap: an honest bound of objective minus optimum
-/// (+infinity if no iterate was dual feasible). The iterate returned is always strictly feasible.
-/// Of BarrierOptions it uses `relative_gap`, `max_newton_steps` (iterations) and `on_step`, called after every
-/// iteration with centring = the iteration's index, t = 1 / mu (mu = s^T z / degree), lambda2 = the relative dual
-/// residual, step = the step length. BarrierResult::newton_steps counts iterations.
+/// Every Newton solve is iteratively refined against H = A^T W^-2 A formed cone by cone (at most
+/// settings.primal_dual.max_refinements times), so that the dual residual stays at the level of rounding instead of
+/// growing with the conditioning of the eliminated system.
+/// Uses settings.relative_gap, max_iterations, on_step (centring = the iteration's index, t = 1 / mu, lambda2 = the
+/// relative dual residual, step = the step length) and settings.primal_dual.
+/// \return status kConverged when the gap s^T z is below relative_gap times the objective and the dual residual
+/// |A^T z - c| is below 1e-7 of the size of its terms; kStalled at the limit of double precision (two steps in a row
+/// shorter than 1e-3, or no progress over five iterations), kNotFactorizable if a Newton system no longer
+/// factorises, kIterationLimit if max_iterations ran out. Uncertified, it returns the dual-feasible iterate with the
+/// smallest gap, and gap_bound is that iterate's gap: an honest bound of objective minus optimum (+infinity if no
+/// iterate was dual feasible). The iterate returned is always strictly feasible.
 /// \throw InvalidInputError if X0 is not strictly feasible; PipelineError if a step is not finite.
-/// `cache` as for solve_convex_subproblem.
-BarrierResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                                  const BarrierOptions& options, SparseCholesky& cholesky,
-                                                  subproblem::AssemblyStructure* cache = nullptr);
+/// `cholesky` and `cache` as for solve_convex_subproblem (barrier_solver.h).
+SubproblemResult solve_convex_subproblem_primal_dual(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
+                                                     const SubproblemSettings& settings, SparseCholesky& cholesky,
+                                                     subproblem::AssemblyStructure* cache = nullptr);
 
 }  // namespace liftmap

@@ -33,7 +33,7 @@ nlohmann::json mesh_json(const SubproblemMesh& m) {
 }  // namespace
 
 void export_subproblem(const std::string& path, const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                       const BarrierResult& result, const BarrierResult* primal_dual) {
+                       const SubproblemResult& result, const SubproblemResult* primal_dual) {
   nlohmann::json j;
   j["p"] = std::isinf(problem.p) ? "inf" : "2";
   j["h"] = problem.h == DistortionCombiner::kMax ? "max" : "norm";
@@ -43,12 +43,12 @@ void export_subproblem(const std::string& path, const ConvexSubproblem& problem,
   j["X0"] = matrix_json(X0);
   j["X"] = matrix_json(result.X);
   j["objective"] = result.objective;
-  j["newton_steps"] = result.newton_steps;
+  j["newton_steps"] = result.iterations;
   if (primal_dual != nullptr) {
     j["primal_dual"] = {{"X", matrix_json(primal_dual->X)},
                         {"objective", primal_dual->objective},
-                        {"iterations", primal_dual->newton_steps},
-                        {"converged", primal_dual->converged}};
+                        {"iterations", primal_dual->iterations},
+                        {"converged", primal_dual->converged()}};
   }
   std::ofstream out(path);
   if (!out) throw IoError(path + ": cannot open for writing");

@@ -14,6 +14,6 @@ namespace liftmap {
 /// solver's minimiser and objective (key "primal_dual": X, objective, iterations, converged).
 /// \throw IoError if the file cannot be written.
 void export_subproblem(const std::string& path, const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                       const BarrierResult& result, const BarrierResult* primal_dual = nullptr);
+                       const SubproblemResult& result, const SubproblemResult* primal_dual = nullptr);
 
 }  // namespace liftmap

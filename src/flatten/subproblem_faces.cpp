@@ -8,6 +8,13 @@
 
 namespace liftmap::subproblem {
 
+Setup make_setup(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0) {
+  if (X0.rows() != problem.n_slots || X0.cols() != 2 || problem.n_slots < 2) {
+    throw InvalidInputError("convex subproblem: X0 must be #slots by 2");
+  }
+  return make_setup(problem);
+}
+
 Setup make_setup(const ConvexSubproblem& problem) {
   Setup s;
   s.settings.h_max = problem.h == DistortionCombiner::kMax;

@@ -9,10 +9,11 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <vector>
 
-#include "flatten/barrier_solver.h"
 #include "flatten/sparse_cholesky.h"
+#include "flatten/subproblem.h"
 
 namespace liftmap::subproblem {
 
@@ -56,6 +57,10 @@ struct Setup {
 /// \throw InvalidInputError if a mesh's sizes disagree or a face has no slot.
 Setup make_setup(const ConvexSubproblem& problem);
 
+/// make_setup(problem) after checking that X0 is #slots by 2 (at least two slots).
+/// \throw InvalidInputError if it is not, or as make_setup.
+Setup make_setup(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0);
+
 /// Sets each ghost face's bound of Sigma_j to kGhostStretch times its Sigma_j at the positions `pos` (2 #slots).
 void set_ghost_bounds(const Eigen::VectorXd& pos, Setup& s);
 
@@ -92,7 +97,7 @@ FacePartition partition_faces(const Setup& s, const SparseCholesky& cholesky);
 
 /// The Newton system's assembly structure for the faces of a Setup: its pattern and face partition, which depend only
 /// on the faces' unknowns (FaceSetup::var). The subproblems of one flattening (joint_flatten) share them: only their
-/// rotations and ghost bounds differ. Building them took 40-50 ms of each man-homer outer iteration (~3%).
+/// rotations and ghost bounds differ.
 struct AssemblyStructure {
   Pattern pattern;
   FacePartition parts;
@@ -135,11 +140,66 @@ void subtract_corner_rows(const Setup& s, const FacePartition& p, const std::vec
 /// many orders of magnitude), by 1e-2 times the shift that worked last time (at least 1e-14), growing 100-fold per
 /// attempt (each a full factorisation). Any positive definite matrix still gives a descent direction, and the
 /// solvers' steps keep the iterate feasible. Leaves A shifted if it was.
-/// Once a solve has needed a shift, the unshifted attempt is skipped: the systems stay indefinite from then on (the
-/// primal-dual method on camel-cow with --p inf: 44 of 57 iterations needed a shift, each after a failed unshifted
-/// factorisation), and the floor of 1e-14 relative is below the factorisation's own rounding.
-/// \param last_shift in: the last successful shift (0: none needed so far); out: this one's
-/// \return false if no shift below 1e3 makes it factorise (the limit of double precision).
+/// Once a solve has needed a shift, the unshifted attempt is skipped: the systems stay indefinite from then on, and the
+/// floor of 1e-14 relative is below the factorisation's own rounding. \param last_shift in: the last successful shift
+/// (0: none needed so far); out: this one's \return false if no shift below 1e3 makes it factorise (the limit of double
+/// precision).
 bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift);
+
+/// Wall time since `start`, seconds (the solvers' SubproblemStep timings).
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// What both solvers hold of one solve: its settings, the factorisation, the per-face data (checked against the
+/// start X0), the Newton system's assembly structure (the cache's, or its own), and the result being built.
+class SolverBase {
+ protected:
+  SolverBase(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0, const SubproblemSettings& settings,
+             SparseCholesky& cholesky, AssemblyStructure* cache)
+      : settings_(settings),
+        cholesky_(cholesky),
+        n_slots_(problem.n_slots),
+        s_(make_setup(problem, X0)),
+        st_(s_.settings),
+        nf_(s_.n_faces),
+        nv_(s_.n_var),
+        assembly_(&assembly_structure(s_, cholesky_, cache != nullptr ? *cache : own_)) {}
+
+  /// The positions of X0 as one vector (2 #slots), and the ghost faces' bounds set from them.
+  Eigen::VectorXd start_positions(const Eigen::MatrixXd& X0) {
+    Eigen::VectorXd pos(s_.n_pos);
+    for (int i = 0; i < n_slots_; ++i) pos.segment<2>(2 * i) = X0.row(i).transpose();
+    set_ghost_bounds(pos, s_);
+    return pos;
+  }
+  /// result_ with X (#slots by 2) from the position vector pos.
+  SubproblemResult& finish(const Eigen::VectorXd& pos) {
+    result_.X.resize(n_slots_, 2);
+    for (int i = 0; i < n_slots_; ++i) result_.X.row(i) = pos.segment<2>(2 * i).transpose();
+    return result_;
+  }
+
+  const SubproblemSettings& settings_;
+  SparseCholesky& cholesky_;
+  int n_slots_;
+  Setup s_;
+  const Settings& st_;
+  int nf_, nv_;
+  AssemblyStructure own_;
+  AssemblyStructure* assembly_;
+  SubproblemResult result_;
+};
+
+/// Runs a solver class (BarrierSolver, PrimalDualSolver: constructed from the problem, the start, the settings, the
+/// factorisation and the cache; solve() returns the result) and sets the result's objective (10a) at its X.
+template <class Solver>
+SubproblemResult solve_with(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
+                            const SubproblemSettings& settings, SparseCholesky& cholesky, AssemblyStructure* cache) {
+  Solver solver(problem, X0, settings, cholesky, cache);
+  SubproblemResult result = solver.solve();
+  result.objective = subproblem_objective(problem, result.X);
+  return result;
+}
 
 }  // namespace liftmap::subproblem

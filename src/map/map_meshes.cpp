@@ -244,7 +244,7 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   auto last_line = Clock::now();
   size_t outer = 1;
   int steps = 0;
-  flatten_options.solver.on_step = [&](const BarrierStep& step) {
+  flatten_options.solver.on_step = [&](const SubproblemStep& step) {
     if (options.flatten.solver.on_step) options.flatten.solver.on_step(step);
     ++steps;
     if (seconds_since(last_line) < kProgressSeconds) return;

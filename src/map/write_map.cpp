@@ -63,7 +63,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"gap_fraction", options.flatten.gap_fraction},
       {"max_subproblem_gap", options.flatten.max_subproblem_gap},
       {"start_gap_fraction", options.flatten.start_gap_fraction},
-      {"isotropic_anticonformal_curvature", options.flatten.solver.isotropic_anticonformal_curvature},
+      {"isotropic_anticonformal_curvature", options.flatten.solver.barrier.isotropic_anticonformal_curvature},
       {"max_iterations", options.flatten.max_iterations},
       {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},
       {"remesh", options.cut.remesh},
@@ -78,17 +78,19 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
   };
   nlohmann::json it = nlohmann::json::array();
   for (const auto& i : map.flattening.iterations) {
-    it.push_back({{"energy", i.energy},
-                  {"energy_A", i.energy_m},
-                  {"energy_B", i.energy_n},
-                  {"max_distortion", i.max_distortion},
-                  {"min_area_ratio", i.min_area_ratio},
-                  {"subproblem_objective", i.subproblem_objective},
-                  {"newton_steps", i.newton_steps},
-                  {"subproblem_gap", i.subproblem_gap},
-                  {"subproblem_converged", i.subproblem_converged},
-                  {"stalled_centrings", i.stalled_centrings},
-                  {"seconds", i.seconds}});
+    it.push_back(
+        {{"energy", i.energy},
+         {"energy_A", i.energy_m},
+         {"energy_B", i.energy_n},
+         {"max_distortion", i.max_distortion},
+         {"min_area_ratio", i.min_area_ratio},
+         {"subproblem_objective", i.subproblem_objective},
+         {"newton_steps", i.newton_steps},
+         {"subproblem_gap", i.subproblem_gap},
+         {"subproblem_converged", i.subproblem_converged},
+         {"stalled_centrings", i.stalled_centrings},
+         {"subproblem_status", i.subproblem_status ? nlohmann::json(to_string(*i.subproblem_status)) : nullptr},
+         {"seconds", i.seconds}});
   }
   nlohmann::json start = nlohmann::json::array();
   for (size_t k = 0; k < 2; ++k) {

@@ -42,18 +42,19 @@ int main(int argc, char** argv) {
       const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
       SparseCholesky chol;
       const auto t0 = std::chrono::steady_clock::now();
-      const BarrierResult r = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol);
+      const SubproblemResult r = solve_convex_subproblem(jp.subproblem, jp.X0, SubproblemSettings{}, chol);
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       SparseCholesky chol_pd;
-      const BarrierResult pd = solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, BarrierOptions{}, chol_pd);
+      const SubproblemResult pd =
+          solve_convex_subproblem_primal_dual(jp.subproblem, jp.X0, SubproblemSettings{}, chol_pd);
       const std::string file = (dir / (std::string(ps.name) + "_" + c.name + ".json")).string();
       export_subproblem(file, jp.subproblem, jp.X0, r, &pd);
       std::printf(
           "%s: %d + %d faces, objective %.12g, gap bound %.1e, %d Newton steps, %.3f s%s; primal-dual %.12g, "
           "gap %.1e, %d iterations%s\n",
           file.c_str(), static_cast<int>(a.F.rows()), static_cast<int>(b.F.rows()), r.objective, r.gap_bound,
-          r.newton_steps, sec, r.converged ? "" : " (stopped before the 1e-8 gap)", pd.objective, pd.gap_bound,
-          pd.newton_steps, pd.converged ? "" : " (stopped before the 1e-8 gap)");
+          r.iterations, sec, r.converged() ? "" : " (stopped before the 1e-8 gap)", pd.objective, pd.gap_bound,
+          pd.iterations, pd.converged() ? "" : " (stopped before the 1e-8 gap)");
     }
   }
   return 0;

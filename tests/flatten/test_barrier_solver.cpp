@@ -209,13 +209,13 @@ TEST_P(flatten_barrier, SolvesFirstSubproblemToOptimality) {
   const Combo combo = GetParam();
   const JointFlattenProblem jp = testing::camel_cow_patch_problem(combo);
   SparseCholesky chol;
-  const BarrierResult r = solve_convex_subproblem(jp.subproblem, jp.X0, BarrierOptions{}, chol);
+  const SubproblemResult r = solve_convex_subproblem(jp.subproblem, jp.X0, SubproblemSettings{}, chol);
   const double f0 = subproblem_objective(jp.subproblem, jp.X0);
-  // p = inf: the Newton systems reach double-precision limits before a 1e-8 gap (see BarrierOptions).
+  // p = inf: the Newton systems reach double-precision limits before a 1e-8 gap (see SubproblemSettings).
   const double gap = std::isinf(combo.p) ? 1e-5 : 1e-8;
-  if (!std::isinf(combo.p)) EXPECT_TRUE(r.converged);
+  if (!std::isinf(combo.p)) EXPECT_TRUE(r.converged());
   std::printf("%s: start %.10g optimum %.10g, %d Newton steps, %d centrings\n", combo.name, f0, r.objective,
-              r.newton_steps, r.centrings);
+              r.iterations, r.centrings);
   EXPECT_LT(r.objective, f0);
   EXPECT_LE(r.gap_bound, gap * r.objective);
   EXPECT_EQ(r.X.row(0), jp.X0.row(0)) << "the gauge vertex moved";
@@ -248,16 +248,16 @@ TEST(flatten_barrier, WholeMeshSubproblemCertificateHolds) {
   const JointFlattenOptions opt;
   const JointFlattenProblem jp = make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), opt);
   SparseCholesky chol;
-  const BarrierResult r = solve_convex_subproblem(jp.subproblem, jp.X0, opt.solver, chol);
+  const SubproblemResult r = solve_convex_subproblem(jp.subproblem, jp.X0, opt.solver, chol);
   const double f0 = subproblem_objective(jp.subproblem, jp.X0);
   std::printf("%d + %d faces: start %.8g, result %.8g, gap bound %.2g, %d Newton steps, %d centrings (%d stalled)\n",
-              static_cast<int>(a.F.rows()), static_cast<int>(b.F.rows()), f0, r.objective, r.gap_bound, r.newton_steps,
+              static_cast<int>(a.F.rows()), static_cast<int>(b.F.rows()), f0, r.objective, r.gap_bound, r.iterations,
               r.centrings, r.stalled_centrings);
-  ASSERT_TRUE(r.converged);
+  ASSERT_TRUE(r.converged());
   EXPECT_EQ(r.stalled_centrings, 0);
   EXPECT_LT(r.objective, f0);
   EXPECT_LE(r.gap_bound, opt.solver.relative_gap * r.objective);
-  const BarrierResult again = solve_convex_subproblem(jp.subproblem, r.X, opt.solver, chol);
+  const SubproblemResult again = solve_convex_subproblem(jp.subproblem, r.X, opt.solver, chol);
   std::printf("solved again from the result: %.8g\n", again.objective);
   EXPECT_GE(again.objective, r.objective - r.gap_bound - 1e-12 * r.objective);
 }

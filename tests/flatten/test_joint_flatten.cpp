@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "disk_patches.h"
+#include "flatten/barrier_solver.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
 #include "flatten/subproblem_faces.h"
@@ -144,7 +145,7 @@ struct SecondSubproblem {
 SecondSubproblem second_subproblem(int faces_a, int faces_b, SparseCholesky& cholesky) {
   const auto [a, b] = testing::patch_pair("camel.off", "cow.off", faces_a, 0, faces_b);
   SecondSubproblem out{make_joint_flatten_problem(a.flattening_disk(), b.flattening_disk(), {}), {}};
-  BarrierOptions solver;
+  SubproblemSettings solver;
   solver.relative_gap = 1e-3;
   out.X = solve_convex_subproblem(out.jp.subproblem, out.jp.X0, solver, cholesky).X;
   place_ghost_vertices(out.jp.subproblem, out.X);
@@ -156,18 +157,18 @@ SecondSubproblem second_subproblem(int faces_a, int faces_b, SparseCholesky& cho
 // options changed by vary(k, options) for k = 0, 1; both solves must be certified.
 struct TwoWays {
   SecondSubproblem p;
-  std::array<BarrierResult, 2> r;
+  std::array<SubproblemResult, 2> r;
 };
 TwoWays solve_two_ways(int faces_a, int faces_b, double relative_gap,
-                       const std::function<void(int, BarrierOptions&)>& vary) {
+                       const std::function<void(int, SubproblemSettings&)>& vary) {
   SparseCholesky cholesky;
   TwoWays out{second_subproblem(faces_a, faces_b, cholesky), {}};
   for (int k = 0; k < 2; ++k) {
-    BarrierOptions o;
+    SubproblemSettings o;
     o.relative_gap = relative_gap;
     vary(k, o);
     out.r[static_cast<size_t>(k)] = solve_convex_subproblem(out.p.jp.subproblem, out.p.X, o, cholesky);
-    EXPECT_TRUE(out.r[static_cast<size_t>(k)].converged) << "variant " << k;
+    EXPECT_TRUE(out.r[static_cast<size_t>(k)].converged()) << "variant " << k;
   }
   return out;
 }
@@ -178,15 +179,15 @@ TEST(flatten_joint, InitialGapSkipsCentringsAndKeepsTheCertificate) {
   // more centrings with it.
   const double gap = 1e-4;
   std::array<double, 2> first_t{0, 0};
-  const auto [p, r] = solve_two_ways(1500, 500, gap, [&](int k, BarrierOptions& o) {
-    o.initial_gap = k == 0 ? 0.0 : 1e-2;
-    o.on_step = [&first_t, k](const BarrierStep& st) {
+  const auto [p, r] = solve_two_ways(1500, 500, gap, [&](int k, SubproblemSettings& o) {
+    o.barrier.initial_gap = k == 0 ? 0.0 : 1e-2;
+    o.on_step = [&first_t, k](const SubproblemStep& st) {
       if (first_t[static_cast<size_t>(k)] == 0) first_t[static_cast<size_t>(k)] = st.t;
     };
   });
   for (size_t k = 0; k < 2; ++k) {
     std::printf("  initial gap %g: first t %.3g, %d centrings, %d Newton steps, objective %.10g\n", k == 0 ? 0.0 : 1e-2,
-                first_t[k], r[k].centrings, r[k].newton_steps, r[k].objective);
+                first_t[k], r[k].centrings, r[k].iterations, r[k].objective);
   }
   EXPECT_GT(first_t[1], first_t[0]);
   EXPECT_LE(r[1].centrings, r[0].centrings);
@@ -199,14 +200,14 @@ TEST(flatten_joint, IsotropicCurvatureAfterShortStepsKeepsTheOptimum) {
   // oriented, their optima agree within the gap, and the modified steps save Newton steps.
   const double gap = 1e-6;
   std::array<int, 2> isotropic_steps{0, 0};
-  const auto [p, r] = solve_two_ways(3000, 1000, gap, [&](int k, BarrierOptions& o) {
-    o.isotropic_anticonformal_curvature = k == 1;
-    o.on_step = [&isotropic_steps, k](const BarrierStep& st) {
+  const auto [p, r] = solve_two_ways(3000, 1000, gap, [&](int k, SubproblemSettings& o) {
+    o.barrier.isotropic_anticonformal_curvature = k == 1;
+    o.on_step = [&isotropic_steps, k](const SubproblemStep& st) {
       isotropic_steps[static_cast<size_t>(k)] += st.isotropic ? 1 : 0;
     };
   });
   for (size_t k = 0; k < 2; ++k) {
-    std::printf("  isotropic %zu: %d Newton steps (%d isotropic), objective %.12g\n", k, r[k].newton_steps,
+    std::printf("  isotropic %zu: %d Newton steps (%d isotropic), objective %.12g\n", k, r[k].iterations,
                 isotropic_steps[k], r[k].objective);
     for (int m = 0; m < 2; ++m) {
       EXPECT_GT(
@@ -216,7 +217,7 @@ TEST(flatten_joint, IsotropicCurvatureAfterShortStepsKeepsTheOptimum) {
   }
   EXPECT_EQ(isotropic_steps[0], 0);
   EXPECT_GT(isotropic_steps[1], 0) << "the instance no longer exercises the isotropic steps";
-  EXPECT_LT(r[1].newton_steps, r[0].newton_steps);
+  EXPECT_LT(r[1].iterations, r[0].iterations);
   EXPECT_NEAR(r[1].objective, r[0].objective, gap * r[0].objective);
 }
 
@@ -282,10 +283,10 @@ TEST(flatten_joint, GhostVerticesArePlacedAfreshForEachSubproblem) {
   ConvexSubproblem& sp = jp.subproblem;
   expect_fresh_ghosts(sp, jp.X0);
   SparseCholesky cholesky;
-  BarrierOptions solver;
+  SubproblemSettings solver;
   solver.relative_gap = 1e-3;
-  const BarrierResult first = solve_convex_subproblem(sp, jp.X0, solver, cholesky);
-  ASSERT_TRUE(first.converged);
+  const SubproblemResult first = solve_convex_subproblem(sp, jp.X0, solver, cholesky);
+  ASSERT_TRUE(first.converged());
   const Eigen::MatrixXd P = similarity_parts(sp.ghosts.jacobian, sp.ghosts.F, first.X);
   double stretched = 0;
   for (Eigen::Index f = 0; f < P.rows(); ++f) stretched = std::max(stretched, std::hypot(P(f, 0), P(f, 1)));
@@ -299,8 +300,8 @@ TEST(flatten_joint, GhostVerticesArePlacedAfreshForEachSubproblem) {
   expect_fresh_ghosts(sp, X);
   EXPECT_EQ(X.topRows(X.rows() - sp.ghosts.F.rows() / 2), first.X.topRows(X.rows() - sp.ghosts.F.rows() / 2));
   EXPECT_NEAR(subproblem_objective(sp, X), before, 1e-12 * before);
-  const BarrierResult second = solve_convex_subproblem(sp, X, solver, cholesky);
-  EXPECT_TRUE(second.converged);
+  const SubproblemResult second = solve_convex_subproblem(sp, X, solver, cholesky);
+  EXPECT_TRUE(second.converged());
   EXPECT_LE(second.objective, before);
 }
 
@@ -310,25 +311,25 @@ TEST(flatten_joint, AssemblyStructureIsSharedOnlyBySubproblemsOfTheSameFaces) {
   // another pair rebuilds them.
   SparseCholesky cholesky;
   SecondSubproblem p = second_subproblem(1500, 500, cholesky);
-  BarrierOptions o;
+  SubproblemSettings o;
   o.relative_gap = 1e-4;
   subproblem::AssemblyStructure cache;
-  const BarrierResult first = solve_convex_subproblem(p.jp.subproblem, p.X, o, cholesky, &cache);
-  ASSERT_TRUE(first.converged);
+  const SubproblemResult first = solve_convex_subproblem(p.jp.subproblem, p.X, o, cholesky, &cache);
+  ASSERT_TRUE(first.converged());
   ASSERT_FALSE(cache.var.empty());
   const auto* index = cache.pattern.index.data();
   Eigen::MatrixXd X = first.X;
   place_ghost_vertices(p.jp.subproblem, X);
   set_rotations(p.jp.subproblem, X);
-  const BarrierResult shared = solve_convex_subproblem(p.jp.subproblem, X, o, cholesky, &cache);
+  const SubproblemResult shared = solve_convex_subproblem(p.jp.subproblem, X, o, cholesky, &cache);
   EXPECT_EQ(cache.pattern.index.data(), index) << "rebuilt for the same faces";
-  const BarrierResult own = solve_convex_subproblem(p.jp.subproblem, X, o, cholesky);
+  const SubproblemResult own = solve_convex_subproblem(p.jp.subproblem, X, o, cholesky);
   EXPECT_EQ(shared.X, own.X);
-  EXPECT_EQ(shared.newton_steps, own.newton_steps);
+  EXPECT_EQ(shared.iterations, own.iterations);
 
   SparseCholesky other_cholesky;
   SecondSubproblem q = second_subproblem(900, 400, other_cholesky);
-  const BarrierResult other = solve_convex_subproblem(q.jp.subproblem, q.X, o, other_cholesky, &cache);
+  const SubproblemResult other = solve_convex_subproblem(q.jp.subproblem, q.X, o, other_cholesky, &cache);
   EXPECT_NE(cache.pattern.index.data(), index) << "kept for other faces";
   EXPECT_EQ(cache.var.size(),
             static_cast<size_t>(q.jp.subproblem.meshes[0].F.rows() + q.jp.subproblem.meshes[1].F.rows() +
