@@ -16,7 +16,7 @@
 #include "disk_patches.h"
 #include "flatten/barrier_solver.h"
 #include "flatten/joint_flatten.h"
-#include "flatten/subproblem_export.h"
+#include "subproblem_export.h"
 
 int main(int argc, char** argv) {
   using namespace liftmap;

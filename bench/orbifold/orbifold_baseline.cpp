@@ -20,13 +20,13 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <limits>
 #include <map>
-#include <queue>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "core/edge_graph_distance.h"
+#include "core/mesh.h"
 #include "io/landmarks.h"
 #include "io/read_mesh.h"
 #include "map/map_meshes.h"
@@ -53,32 +53,20 @@ struct Embedding {
   int flipped = 0;                                ///< faces with non-positive signed area in the plane
 };
 
-/// Vertices of a shortest edge path from s to t that avoids the `blocked` vertices (Dijkstra on edge lengths).
-std::vector<SmVertex> shortest_path(const SurfaceMesh& sm, SmVertex s, SmVertex t, const std::vector<bool>& blocked) {
-  std::vector<double> dist(sm.number_of_vertices(), std::numeric_limits<double>::infinity());
-  std::vector<SmVertex> previous(sm.number_of_vertices());
-  using Item = std::pair<double, SmVertex>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  dist[s] = 0;
-  queue.emplace(0.0, s);
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (v == t) break;
-    if (d > dist[v]) continue;
-    for (const SmVertex w : vertices_around_target(sm.halfedge(v), sm)) {
-      if (blocked[w] && w != t) continue;
-      const double dw = d + std::sqrt(CGAL::squared_distance(sm.point(v), sm.point(w)));
-      if (dw < dist[w]) {
-        dist[w] = dw;
-        previous[w] = v;
-        queue.emplace(dw, w);
-      }
-    }
-  }
+/// Vertices of a shortest edge path from s to t that avoids the `blocked` vertices: the library's Dijkstra on
+/// `mesh`, the connectivity of `sm`, with its edge lengths.
+std::vector<SmVertex> shortest_path(const SurfaceMesh& sm, const liftmap::Mesh& mesh, SmVertex s, SmVertex t,
+                                    const std::vector<bool>& blocked) {
+  const auto length = [&](int u, int w) {
+    return std::sqrt(CGAL::squared_distance(sm.point(SmVertex(u)), sm.point(SmVertex(w))));
+  };
+  const auto enter = [&](int, int w, double) { return !blocked[static_cast<size_t>(w)] || SmVertex(w) == t; };
+  std::vector<double> dist;
+  std::vector<int> pred;
+  liftmap::edge_graph_search(mesh, {static_cast<int>(s)}, length, enter, dist, &pred);
   if (!std::isfinite(dist[t])) throw std::runtime_error("no path between two cones avoiding the first seam");
   std::vector<SmVertex> path{t};
-  while (path.back() != s) path.push_back(previous[path.back()]);
+  while (path.back() != s) path.push_back(SmVertex(pred[path.back()]));
   std::reverse(path.begin(), path.end());
   return path;
 }
@@ -93,10 +81,11 @@ Embedding embed(const liftmap::TriangleMesh& m, const std::array<int, 3>& cones)
   // The seam: a shortest path from cone 0 to cone 1, then one from cone 1 to cone 2 that avoids the first, so
   // that the two never share a vertex (CGAL's compute_shortest_paths_between_cones finds them independently,
   // and on camel and fandisk they overlap, which the parameterizer rejects).
+  const liftmap::Mesh connectivity(m.F, static_cast<int>(m.V.rows()));
   std::vector<bool> blocked(sm.number_of_vertices(), false);
-  const std::vector<SmVertex> first = shortest_path(sm, cone_vertices[0], cone_vertices[1], blocked);
+  const std::vector<SmVertex> first = shortest_path(sm, connectivity, cone_vertices[0], cone_vertices[1], blocked);
   for (const SmVertex v : first) blocked[v] = true;
-  std::vector<SmVertex> seam = shortest_path(sm, cone_vertices[1], cone_vertices[2], blocked);
+  std::vector<SmVertex> seam = shortest_path(sm, connectivity, cone_vertices[1], cone_vertices[2], blocked);
   seam.insert(seam.begin(), first.begin(), first.end() - 1);
   const SeamEdgeMap seam_edges = sm.add_property_map<SmEdge, bool>("e:on_seam", false).first;
   const SeamVertexMap seam_vertices = sm.add_property_map<SmVertex, bool>("v:on_seam", false).first;

@@ -45,7 +45,6 @@ Eigen::RowVectorXd interpolate(const Mesh& mesh, const Eigen::MatrixXd& X, const
 
 SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p) {
   if (p.kind == SurfacePoint::Kind::kFace) return p;
-  // Weight of each corner of the chosen face.
   HalfedgeId h;
   if (p.kind == SurfacePoint::Kind::kVertex) {
     h = mesh.halfedge(p.vertex);
@@ -55,19 +54,7 @@ SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p) {
   }
   assert(h.valid() && !mesh.is_boundary(h));
   const FaceId f = mesh.face(h);
-  const auto fh = mesh.face_halfedges(f);
-  std::array<double, 3> bary{0, 0, 0};
-  for (int k = 0; k < 3; ++k) {
-    if (p.kind == SurfacePoint::Kind::kVertex) {
-      if (mesh.tail(fh[k]) == p.vertex) bary[k] = 1.0;
-    } else if (Mesh::edge(fh[k]) == p.edge) {
-      // fh[k] runs from corner k to corner k+1; edge parameter t is measured along Mesh::halfedge(edge).
-      const bool same = fh[k] == Mesh::halfedge(p.edge);
-      bary[k] = same ? 1.0 - p.t : p.t;
-      bary[(k + 1) % 3] = same ? p.t : 1.0 - p.t;
-    }
-  }
-  return SurfacePoint::in_face(f, bary);
+  return SurfacePoint::in_face(f, barycentric_in_face(mesh, p, f));
 }
 
 std::array<double, 3> barycentric_in_face(const Mesh& input, const SurfacePoint& p, FaceId f) {
@@ -82,6 +69,7 @@ std::array<double, 3> barycentric_in_face(const Mesh& input, const SurfacePoint&
     case SurfacePoint::Kind::kEdge:
       for (int k = 0; k < 3; ++k) {
         if (Mesh::edge(fh[k]) != p.edge) continue;
+        // fh[k] runs from corner k to corner k+1; edge parameter t is measured along Mesh::halfedge(edge).
         const bool same = fh[k] == Mesh::halfedge(p.edge);
         b[k] = same ? 1.0 - p.t : p.t;
         b[(k + 1) % 3] = same ? p.t : 1.0 - p.t;

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "cut/edge_key.h"
 
 namespace liftmap {
 
@@ -146,12 +147,6 @@ void equalize_paths(RefinedMesh& a, const Mesh& input_a, std::vector<std::vector
 }
 
 namespace {
-
-std::uint64_t edge_key(int u, int w) {
-  const auto lo = static_cast<std::uint64_t>(std::min(u, w));
-  const auto hi = static_cast<std::uint64_t>(std::max(u, w));
-  return (lo << 32) | hi;
-}
 
 /// A boundary loop split into sides between consecutive landmark copies.
 struct Loop {

@@ -10,6 +10,7 @@
 #include "cut/boundary_correspondence.h"
 #include "cut/cut_to_disk.h"
 #include "cut/cut_tree.h"
+#include "cut/edge_key.h"
 #include "cut/geodesic_distance.h"
 #include "cut/refined_mesh.h"
 #include "cut/remesh_along_paths.h"
@@ -47,12 +48,6 @@ void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<V
                               " cannot be reached from landmark 0)");
     }
   }
-}
-
-std::uint64_t edge_key(int u, int w) {
-  const auto lo = static_cast<std::uint64_t>(std::min(u, w));
-  const auto hi = static_cast<std::uint64_t>(std::max(u, w));
-  return (lo << 32) | hi;
 }
 
 CutSide finish(const RefinedMesh& r, const Mesh& input, const std::vector<int>& landmarks,

@@ -12,17 +12,12 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "cut/edge_key.h"
 #include "cut/geodesic_path.h"
 
 namespace liftmap {
 
 namespace {
-
-std::uint64_t edge_key(int u, int w) {
-  const auto lo = static_cast<std::uint64_t>(std::min(u, w));
-  const auto hi = static_cast<std::uint64_t>(std::max(u, w));
-  return (lo << 32) | hi;
-}
 
 /// The tracing state of one mesh.
 struct Side {

@@ -1,6 +1,5 @@
 #include "flatten/joint_flatten.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/total_area.h"
 #include "flatten/barrier_solver.h"
 #include "flatten/boundary_loop.h"
 #include "flatten/flattening_checks.h"
@@ -41,17 +41,6 @@ void check_boundary(const FlatteningDisk& d, const char* name) {
                               " is not its boundary loop in counter-clockwise order");
     }
   }
-}
-
-double total_area(const Mesh& mesh, const Eigen::MatrixXd& V) {
-  double a = 0;
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const auto fv = mesh.face_vertices(FaceId(f));
-    const Eigen::Vector3d e1 = V.row(fv[1].idx) - V.row(fv[0].idx);
-    const Eigen::Vector3d e2 = V.row(fv[2].idx) - V.row(fv[0].idx);
-    a += 0.5 * e1.cross(e2).norm();
-  }
-  return a;
 }
 
 /// Cumulative boundary arc length, as a fraction of the loop length, at each boundary vertex.
@@ -142,7 +131,7 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
   const std::array<const FlatteningDisk*, 2> disks{&m, &n};
 
   JointFlattenProblem jp;
-  const double am = total_area(*m.mesh, m.V), an = total_area(*n.mesh, n.V);
+  const double am = total_area(m.V, m.mesh->faces()), an = total_area(n.V, n.mesh->faces());
   if (options.normalize_area) {
     jp.scale_m = std::sqrt(std::numbers::pi / am);
     jp.scale_n = std::sqrt(std::numbers::pi / an);

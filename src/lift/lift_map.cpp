@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <deque>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -10,6 +9,7 @@
 
 #include "core/errors.h"
 #include "lift/exact_predicates.h"
+#include "lift/format_point.h"
 #include "lift/lift_path.h"
 
 namespace liftmap {
@@ -17,13 +17,6 @@ namespace liftmap {
 namespace {
 
 using Roots = std::vector<std::pair<VertexId, VertexId>>;
-
-std::string fmt(const Eigen::Vector2d& p) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
 
 std::string element_name(const SurfacePoint& p) {
   switch (p.kind) {
@@ -139,9 +132,9 @@ class LiftedBijection::OneWay {
       const SurfacePoint r = lifter_.lift_segment(images_[u], x(u), x(w));
       if (!same_element(r, images_[w])) {
         throw PipelineError("lifting " + name_ + ": not liftable, the lift of edge (" + std::to_string(u.idx) + ", " +
-                            std::to_string(w.idx) + ") from " + fmt(x(u)) + " to " + fmt(x(w)) + " ends in " +
-                            element_name(r) + " but the spanning tree put vertex " + std::to_string(w.idx) + " in " +
-                            element_name(images_[w]));
+                            std::to_string(w.idx) + ") from " + format_point(x(u)) + " to " + format_point(x(w)) +
+                            " ends in " + element_name(r) + " but the spanning tree put vertex " +
+                            std::to_string(w.idx) + " in " + element_name(images_[w]));
       }
     }
     // Same element and same planar point means same point: the target flattening is injective on an element.
@@ -159,7 +152,7 @@ class LiftedBijection::OneWay {
       if (k0 == k1 && e0 == e1 && x0 == x1 && y0 == y1) {
         throw PipelineError("lifting " + name_ + ": not injective, vertices " + std::to_string(v0) + " and " +
                             std::to_string(v1) + " both map to " + element_name(images_[VertexId(v0)]) + " at " +
-                            fmt(x_[static_cast<size_t>(v0)]));
+                            format_point(x_[static_cast<size_t>(v0)]));
       }
     }
   }
@@ -241,8 +234,9 @@ LiftedBijection::LiftedBijection(const Mesh& M, const Eigen::MatrixXd& Phi, cons
     if (!M.is_boundary(vm) || !N.is_boundary(vn)) throw InvalidInputError(row + ": not a pair of boundary vertices");
     if (to_n[vm].valid() || to_m[vn].valid()) throw InvalidInputError(row + ": vertex listed twice");
     if (Phi(m, 0) != Psi(n, 0) || Phi(m, 1) != Psi(n, 1)) {
-      throw InvalidInputError(row + ": Phi = " + fmt(Phi.row(m).transpose()) + " differs from Psi = " +
-                              fmt(Psi.row(n).transpose()) + "; the flattenings must agree exactly on the boundary");
+      throw InvalidInputError(row + ": Phi = " + format_point(Phi.row(m).transpose()) +
+                              " differs from Psi = " + format_point(Psi.row(n).transpose()) +
+                              "; the flattenings must agree exactly on the boundary");
     }
     to_n[vm] = vn;
     to_m[vn] = vm;

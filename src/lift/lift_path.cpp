@@ -6,23 +6,17 @@
 
 #include "core/errors.h"
 #include "lift/exact_predicates.h"
+#include "lift/format_point.h"
 #include "lift/local_injectivity.h"
 
 namespace liftmap {
 
 namespace {
 
-std::string fmt(const Eigen::Vector2d& p) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
-
 double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 std::string segment_name(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return "the segment from " + fmt(a) + " to " + fmt(b);
+  return "the segment from " + format_point(a) + " to " + format_point(b);
 }
 
 }  // namespace
@@ -44,8 +38,8 @@ PathLifter::PathLifter(const Mesh& mesh, const Eigen::MatrixXd& Psi) : mesh_(mes
       const FaceId f = report.flipped_faces.front();
       const auto fv = mesh.face_vertices(f);
       where += "; face " + std::to_string(f.idx) + " has vertices " + std::to_string(fv[0].idx) + " " +
-               fmt(position(fv[0])) + ", " + std::to_string(fv[1].idx) + " " + fmt(position(fv[1])) + ", " +
-               std::to_string(fv[2].idx) + " " + fmt(position(fv[2]));
+               format_point(position(fv[0])) + ", " + std::to_string(fv[1].idx) + " " + format_point(position(fv[1])) +
+               ", " + std::to_string(fv[2].idx) + " " + format_point(position(fv[2]));
     }
     throw PipelineError(
         "path lifting: the flattening is not locally injective, so it cannot be lifted (paper "
@@ -89,7 +83,7 @@ SurfacePoint PathLifter::refine(const SurfacePoint& hint, const Eigen::Vector2d&
     case SurfacePoint::Kind::kVertex:
       if (position(hint.vertex) == z) return SurfacePoint::at_vertex(hint.vertex);
       throw InvalidInputError("path lifting: start vertex " + std::to_string(hint.vertex.idx) + " lies at " +
-                              fmt(position(hint.vertex)) + ", not at " + fmt(z));
+                              format_point(position(hint.vertex)) + ", not at " + format_point(z));
     case SurfacePoint::Kind::kEdge: {
       const HalfedgeId h0 = Mesh::halfedge(hint.edge);
       const Eigen::Vector2d& p = position(mesh_.tail(h0));
@@ -97,8 +91,8 @@ SurfacePoint PathLifter::refine(const SurfacePoint& hint, const Eigen::Vector2d&
       if (z == p) return SurfacePoint::at_vertex(mesh_.tail(h0));
       if (z == q) return SurfacePoint::at_vertex(mesh_.head(h0));
       if (orient2d(p, q, z) == 0 && compare_xy(p, z) == compare_xy(z, q)) return edge_point(h0, z);
-      throw InvalidInputError("path lifting: " + fmt(z) + " does not lie on start edge " +
-                              std::to_string(hint.edge.idx) + " from " + fmt(p) + " to " + fmt(q));
+      throw InvalidInputError("path lifting: " + format_point(z) + " does not lie on start edge " +
+                              std::to_string(hint.edge.idx) + " from " + format_point(p) + " to " + format_point(q));
     }
     case SurfacePoint::Kind::kFace: {
       const auto fh = mesh_.face_halfedges(hint.face);
@@ -114,7 +108,7 @@ SurfacePoint PathLifter::refine(const SurfacePoint& hint, const Eigen::Vector2d&
         case TriangleLocation::Kind::kOutside:
           break;
       }
-      throw InvalidInputError("path lifting: " + fmt(z) + " does not lie in start face " +
+      throw InvalidInputError("path lifting: " + format_point(z) + " does not lie in start face " +
                               std::to_string(hint.face.idx));
     }
   }
@@ -171,7 +165,7 @@ SurfacePoint PathLifter::lift_segment(const SurfacePoint& start, const Eigen::Ve
         if (mesh_.is_boundary(h)) {
           throw leave_error("boundary edge " + std::to_string(first.edge.idx) + " (vertices " +
                             std::to_string(mesh_.tail(h0).idx) + ", " + std::to_string(mesh_.head(h0).idx) +
-                            ") at its start " + fmt(a));
+                            ") at its start " + format_point(a));
         }
         state = State::kFace;
         face = mesh_.face(h);
@@ -220,8 +214,8 @@ SurfacePoint PathLifter::lift_segment(const SurfacePoint& start, const Eigen::Ve
             }
             if (mesh_.is_boundary(out)) {
               throw leave_error("boundary edge " + std::to_string(Mesh::edge(out).idx) + " (vertices " +
-                                std::to_string(mesh_.tail(fh[k]).idx) + " at " + fmt(*P[k]) + ", " +
-                                std::to_string(mesh_.tail(fh[k1]).idx) + " at " + fmt(*P[k1]) + ") of face " +
+                                std::to_string(mesh_.tail(fh[k]).idx) + " at " + format_point(*P[k]) + ", " +
+                                std::to_string(mesh_.tail(fh[k1]).idx) + " at " + format_point(*P[k1]) + ") of face " +
                                 std::to_string(face.idx));
             }
             face = mesh_.face(out);
@@ -263,10 +257,10 @@ SurfacePoint PathLifter::lift_segment(const SurfacePoint& start, const Eigen::Ve
         } while (!moved && h != first_out);
         if (!moved) {
           if (mesh_.is_boundary(vertex)) {
-            throw leave_error("boundary vertex " + std::to_string(vertex.idx) + " at " + fmt(pv));
+            throw leave_error("boundary vertex " + std::to_string(vertex.idx) + " at " + format_point(pv));
           }
           throw PipelineError("path lifting: internal error, no fan wedge of vertex " + std::to_string(vertex.idx) +
-                              " at " + fmt(pv) + " holds " + segment_name(a, b));
+                              " at " + format_point(pv) + " holds " + segment_name(a, b));
         }
         break;
       }

@@ -4,19 +4,13 @@
 
 #include "core/errors.h"
 #include "lift/exact_predicates.h"
+#include "lift/format_point.h"
 
 namespace liftmap {
 
 namespace {
 
 Eigen::Vector2d point(const Eigen::MatrixXd& X, VertexId v) { return X.row(v.idx).transpose(); }
-
-std::string coords(const Eigen::MatrixXd& X, int i) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(" << X(i, 0) << ", " << X(i, 1) << ")";
-  return s.str();
-}
 
 /// Number of times the fan of `v` sweeps past the direction of its first outgoing edge (counter-clockwise,
 /// excluding the start). 1 for a locally injective interior vertex, 0 for a boundary vertex with angle < 2*pi.
@@ -50,12 +44,12 @@ std::string LocalInjectivityReport::summary(const Eigen::MatrixXd& X) const {
   if (!bad_interior_vertices.empty()) {
     const int v = bad_interior_vertices.front().idx;
     s << bad_interior_vertices.size() << " interior vertex(es) whose one-ring does not wind exactly once (fold or "
-      << "branch point), first: vertex " << v << " at " << coords(X, v) << "; ";
+      << "branch point), first: vertex " << v << " at " << format_point(point(X, VertexId(v))) << "; ";
   }
   if (!bad_boundary_vertices.empty()) {
     const int v = bad_boundary_vertices.front().idx;
     s << bad_boundary_vertices.size() << " boundary vertex(es) with angle sum >= 2*pi, first: vertex " << v << " at "
-      << coords(X, v) << "; ";
+      << format_point(point(X, VertexId(v))) << "; ";
   }
   std::string out = s.str();
   out.resize(out.size() - 2);

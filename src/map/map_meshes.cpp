@@ -10,6 +10,7 @@
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
+#include "core/total_area.h"
 #include "flatten/distortion.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
@@ -47,14 +48,6 @@ std::array<double, 3> clamp_barycentric(std::array<double, 3> w) {
 }
 
 Eigen::Vector3d row3(const Eigen::MatrixXd& V, int i) { return V.row(i).transpose(); }
-
-double total_area(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  double a = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    a += 0.5 * (row3(V, F(f, 1)) - row3(V, F(f, 0))).cross(row3(V, F(f, 2)) - row3(V, F(f, 0))).norm();
-  }
-  return a;
-}
 
 /// Everything needed to translate between one input mesh and its cut disk.
 struct SideTranslator {

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cut/exact_geodesic.h"
 #include "cut_test_util.h"
+#include "exact_geodesic.h"
 
 namespace liftmap {
 namespace {

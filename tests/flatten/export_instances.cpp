@@ -12,7 +12,7 @@
 #include "flatten/barrier_solver.h"
 #include "flatten/joint_flatten.h"
 #include "flatten/primal_dual_solver.h"
-#include "flatten/subproblem_export.h"
+#include "subproblem_export.h"
 
 int main(int argc, char** argv) {
   using namespace liftmap;

@@ -1,4 +1,4 @@
-#include "cut/exact_geodesic.h"
+#include "exact_geodesic.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>

@@ -1,4 +1,4 @@
-#include "flatten/subproblem_export.h"
+#include "subproblem_export.h"
 
 #include <cmath>
 #include <fstream>
