@@ -800,25 +800,19 @@ void BarrierSolver::eliminate_face(int j, bool isotropic) {
 // threads (FacePartition), the rest after them; then the epigraph variables' derivatives.
 void BarrierSolver::assemble() {
   Pattern& pattern = assembly_->pattern;
+  clear_values(pattern);
   double* values = pattern.A.valuePtr();
-  const Eigen::Index n_values = pattern.A.nonZeros();
-#pragma omp parallel for schedule(static) if (n_values > 100000)
-  for (Eigen::Index k = 0; k < n_values; ++k) values[k] = 0;
   gx_ = Eigen::VectorXd::Zero(nv_);
   gy_.resize(2 * nf_);
   std::array<std::array<double, 2>, 3> list_g_t{}, list_h_tt{};  // per face list, summed in list order below
   for_each_face_partitioned(assembly_->parts, [&](int j, int list) {
     const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
     const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    const auto& idx = pattern.index[static_cast<size_t>(j)];
     for (int r = 0; r < 6; ++r) {
       const int v = fs.var[static_cast<size_t>(r)];
       if (v >= 0) gx_(v) += fsys.gx(r);
-      for (int c = 0; c < 6; ++c) {
-        const int i = idx[static_cast<size_t>(6 * r + c)];
-        if (i >= 0) values[i] += fsys.K(r, c);
-      }
     }
+    add_corner_block(values, pattern.index[static_cast<size_t>(j)], fsys.K);
     gy_.segment<2>(2 * j) = fsys.gy;
     if (fs.ghost()) return;
     list_g_t[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.g_t;

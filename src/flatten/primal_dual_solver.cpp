@@ -599,23 +599,17 @@ double PrimalDualSolver::scale_and_eliminate() {
   return gap;
 }
 
-// Assembles the Schur system in the vertex coordinates and factorises it (with a relative diagonal shift if rounding
-// made it indefinite); false if no shift made it factorise. p = inf: the T couplings were taken before the
-// elimination; they are the plain blocks of H (the bordered solve eliminates through P^-1, which includes the
-// auxiliaries).
+// Assembles the Schur system in the vertex coordinates, face by face in order, and factorises it (with a relative
+// diagonal shift if rounding made it indefinite); false if no shift made it factorise. In face order, not on two
+// threads as the barrier method's (for_each_face_partitioned): that changes the sums' rounding, which p = inf's
+// iterates follow (docs/performance.md). p = inf: the T couplings were taken before the elimination; they are the
+// plain blocks of H (the bordered solve eliminates through P^-1, which includes the auxiliaries).
 bool PrimalDualSolver::factor_system() {
   Pattern& pattern = assembly_->pattern;
+  clear_values(pattern);
   double* values = pattern.A.valuePtr();
-  std::fill(values, values + pattern.A.nonZeros(), 0.0);
   for (int j = 0; j < nf_; ++j) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
-    const auto& idx = pattern.index[static_cast<size_t>(j)];
-    for (int r = 0; r < 6; ++r) {
-      for (int c = 0; c < 6; ++c) {
-        const int i = idx[static_cast<size_t>(6 * r + c)];
-        if (i >= 0) values[i] += fsys.K(r, c);
-      }
-    }
+    add_corner_block(values, pattern.index[static_cast<size_t>(j)], sys_[static_cast<size_t>(j)].K);
   }
   return factorize_with_shift(cholesky_, pattern.A, last_shift_);
 }

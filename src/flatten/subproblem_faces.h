@@ -122,6 +122,19 @@ void for_each_face_partitioned(const FacePartition& p, Fn&& fn) {
   for (const int j : p.lists[2]) fn(j, 2);
 }
 
+/// Sets the values of the Schur system's stored entries to 0 (on two threads for large systems).
+void clear_values(Pattern& pattern);
+
+/// Adds a face's 6 x 6 corner block K into the Schur system's values at its entries `index` (Pattern::index).
+inline void add_corner_block(double* values, const std::array<int, 36>& index, const Mat6& K) {
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      const int i = index[static_cast<size_t>(6 * r + c)];
+      if (i >= 0) values[i] += K(r, c);
+    }
+  }
+}
+
 /// X.row(v) -= rows[j].row(r) for every corner coordinate r (unknown v) of every face j.
 template <int NC>
 void subtract_corner_rows(const Setup& s, const FacePartition& p, const std::vector<Eigen::Matrix<double, 6, NC>>& rows,
