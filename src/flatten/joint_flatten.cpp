@@ -241,6 +241,46 @@ bool uses_primal_dual(const JointFlattenOptions& options) {
          (options.method == SubproblemSolver::kAuto && std::isinf(options.p));
 }
 
+namespace {
+
+/// Checks that the iterate X can be lifted (no flipped or degenerate face, interior angle sums 2 pi, boundary ones
+/// below 2 pi) and records its statistics in `it` (energies (8), max distortion, smallest face area over the mean);
+/// keeps its flattenings in res if options.keep_iterates.
+/// \throw PipelineError naming the outer iteration, or the vertex and disk, if a check fails.
+void record_iterate(const JointFlattenProblem& jp, const std::array<const Mesh*, 2>& meshes, const Eigen::MatrixXd& X,
+                    const JointFlattenOptions& options, JointFlattenResult& res, JointFlattenIteration& it) {
+  double e[2];
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::MatrixXd U = mesh_positions(jp.subproblem, k, X);
+    const Eigen::VectorXd areas = signed_double_areas(jp.F[static_cast<size_t>(k)], U);
+    const double ratio = areas.minCoeff() / areas.mean();
+    it.min_area_ratio = k == 0 ? ratio : std::min(it.min_area_ratio, ratio);
+    if ((areas.array() <= 0).any()) {
+      throw PipelineError("joint_flatten: a face is flipped or degenerate in outer iteration " +
+                          std::to_string(res.iterations.size()));
+    }
+    const Eigen::VectorXd sums = angle_sums(*meshes[static_cast<size_t>(k)], U);
+    for (int v = 0; v < meshes[static_cast<size_t>(k)]->n_vertices(); ++v) {
+      const VertexId vid(v);
+      if (meshes[static_cast<size_t>(k)]->is_isolated(vid)) continue;
+      const bool bad = meshes[static_cast<size_t>(k)]->is_boundary(vid)
+                           ? !(sums(v) < 2 * std::numbers::pi)
+                           : std::abs(sums(v) - 2 * std::numbers::pi) > 1e-6;
+      if (bad) {
+        throw PipelineError("joint_flatten: vertex " + std::to_string(v) + " of disk " + (k == 0 ? "M" : "N") +
+                            " is not locally injective (angle sum " + std::to_string(sums(v)) + ")");
+      }
+    }
+    e[k] = energy_of(jp.subproblem.meshes[static_cast<size_t>(k)], U, options, it.max_distortion);
+    if (options.keep_iterates) (k == 0 ? res.Phi_iterates : res.Psi_iterates).push_back(U / jp.scale_m);
+  }
+  it.energy_m = e[0];
+  it.energy_n = e[1];
+  it.energy = e[0] + e[1];
+}
+
+}  // namespace
+
 JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& n, const JointFlattenOptions& options) {
   JointFlattenProblem jp = make_joint_flatten_problem(m, n, options);
   ConvexSubproblem& sp = jp.subproblem;
@@ -249,43 +289,12 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
   res.scale_n = jp.scale_n;
   res.start = jp.start;
   res.start_steps = jp.start_steps;
-
-  auto record = [&](const Eigen::MatrixXd& X, JointFlattenIteration& it) {
-    const std::array<const Mesh*, 2> meshes{m.mesh, n.mesh};
-    double e[2];
-    for (int k = 0; k < 2; ++k) {
-      const Eigen::MatrixXd U = mesh_positions(sp, k, X);
-      const Eigen::VectorXd areas = signed_double_areas(jp.F[static_cast<size_t>(k)], U);
-      const double ratio = areas.minCoeff() / areas.mean();
-      it.min_area_ratio = k == 0 ? ratio : std::min(it.min_area_ratio, ratio);
-      if ((areas.array() <= 0).any()) {
-        throw PipelineError("joint_flatten: a face is flipped or degenerate in outer iteration " +
-                            std::to_string(res.iterations.size()));
-      }
-      const Eigen::VectorXd sums = angle_sums(*meshes[static_cast<size_t>(k)], U);
-      for (int v = 0; v < meshes[static_cast<size_t>(k)]->n_vertices(); ++v) {
-        const VertexId vid(v);
-        if (meshes[static_cast<size_t>(k)]->is_isolated(vid)) continue;
-        const bool bad = meshes[static_cast<size_t>(k)]->is_boundary(vid)
-                             ? !(sums(v) < 2 * std::numbers::pi)
-                             : std::abs(sums(v) - 2 * std::numbers::pi) > 1e-6;
-        if (bad) {
-          throw PipelineError("joint_flatten: vertex " + std::to_string(v) + " of disk " + (k == 0 ? "M" : "N") +
-                              " is not locally injective (angle sum " + std::to_string(sums(v)) + ")");
-        }
-      }
-      e[k] = energy_of(sp.meshes[static_cast<size_t>(k)], U, options, it.max_distortion);
-      if (options.keep_iterates) (k == 0 ? res.Phi_iterates : res.Psi_iterates).push_back(U / jp.scale_m);
-    }
-    it.energy_m = e[0];
-    it.energy_n = e[1];
-    it.energy = e[0] + e[1];
-  };
+  const std::array<const Mesh*, 2> meshes{m.mesh, n.mesh};
 
   Eigen::MatrixXd X = jp.X0;
   {
     JointFlattenIteration it;
-    record(X, it);
+    record_iterate(jp, meshes, X, options, res, it);
     res.iterations.push_back(it);
     if (options.on_iteration) options.on_iteration(0, it);
   }
@@ -333,7 +342,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     it.stalled_centrings = br.stalled_centrings;
     it.subproblem_status = br.status;
     try {
-      record(br.X, it);
+      record_iterate(jp, meshes, br.X, options, res, it);
     } catch (const PipelineError& e) {  // the previous iterate passed these checks: it is the result
       res.stop_reason = std::string(e.what()) + "; kept the flattenings of iteration " + std::to_string(iter);
       if (options.keep_iterates) {
