@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -21,7 +20,7 @@ namespace {
 }
 
 /// A vertex index token: a plain non-negative integer (other forms are reserved for surface points).
-long long parse_index(const std::string& path, int line, const std::string& token, char side) {
+long long parse_index(const std::string& path, int line, const std::string& token, char side, int n) {
   const bool digits = !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
   if (!digits) {
     if (token[0] == '-') fail(path, line, "negative vertex index '" + token + "' for mesh " + side);
@@ -32,7 +31,10 @@ long long parse_index(const std::string& path, int line, const std::string& toke
   }
   long long v = 0;
   const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  return ec == std::errc() ? v : std::numeric_limits<long long>::max();
+  if (ec != std::errc()) {
+    fail(path, line, "vertex " + token + " is out of range for mesh " + side + " (" + std::to_string(n) + " vertices)");
+  }
+  return v;
 }
 
 /// The checks every landmark pair passes, from a file or from arrays: indices in range, no vertex twice per side.
@@ -115,7 +117,8 @@ Landmarks read_landmarks(std::istream& in, const std::string& path, int n_vertic
     if (t.size() != 2) {
       fail(path, line_no, "expected two vertex indices 'iA iB', found " + std::to_string(t.size()) + " fields");
     }
-    collector.add(parse_index(path, line_no, t[0], 'A'), parse_index(path, line_no, t[1], 'B'), line_no);
+    collector.add(parse_index(path, line_no, t[0], 'A', n_vertices_a),
+                  parse_index(path, line_no, t[1], 'B', n_vertices_b), line_no);
   }
   if (in.bad()) throw IoError(path + ": read error");
   return collector.finish();
