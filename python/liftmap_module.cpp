@@ -129,31 +129,33 @@ void bind_vertex_map(py::module_& m) {
       .def_property_readonly("barycentric", &VertexMap::barycentric,
                              "(#V, 3) float64: barycentric coordinates in that face, each row summing to 1.")
       .def("points", &VertexMap::points, "points() -> (#V, 3) float64: the images' positions on the target.")
-      .def("__len__", [](const VertexMap& v) { return v.images.size(); });
+      .def(
+          "__len__", [](const VertexMap& v) { return v.images.size(); }, "The number of source vertices.");
+}
+
+/// Binds the side-A and side-B properties of one Map accessor taking a Side.
+template <typename Method>
+void def_sides(py::class_<Map>& c, const char* name_a, const char* name_b, Method method, const char* doc_a,
+               const char* doc_b) {
+  c.def_property_readonly(
+      name_a, [method](const Map& x) { return (x.*method)(Side::kA); }, doc_a);
+  c.def_property_readonly(
+      name_b, [method](const Map& x) { return (x.*method)(Side::kB); }, doc_b);
 }
 
 void bind_map(py::module_& m) {
-  py::class_<Map>(m, "Map", "The verified map between meshes A and B, made by liftmap.map.")
-      .def_property_readonly(
-          "a_to_b", [](const Map& x) { return x.on_inputs(Side::kA); },
-          "VertexMap f: per vertex of A, a face of B and barycentric coordinates (A_to_B.txt).")
-      .def_property_readonly(
-          "b_to_a", [](const Map& x) { return x.on_inputs(Side::kB); },
-          "VertexMap g: per vertex of B, a face of A and barycentric coordinates (B_to_A.txt).")
-      .def_property_readonly(
-          "cut_a_to_b", [](const Map& x) { return x.on_cut(Side::kA); },
-          "VertexMap f on the cut mesh: per vertex of cut['A'] (vt of cut_A.obj), a face of "
-          "cut['B']['F_cut'] (cut_A_to_B.txt).")
-      .def_property_readonly(
-          "cut_b_to_a", [](const Map& x) { return x.on_cut(Side::kB); },
-          "VertexMap g on the cut mesh: per vertex of cut['B'], a face of cut['A']['F_cut'].")
-      .def_property_readonly(
-          "flattening_a", [](const Map& x) { return x.flattening(Side::kA); },
-          "(#Vc_A, 2) float64: Phi, the flattening of A's cut mesh (vt of cut_A.obj).")
-      .def_property_readonly(
-          "flattening_b", [](const Map& x) { return x.flattening(Side::kB); },
-          "(#Vc_B, 2) float64: Psi, the flattening of B's cut mesh (vt of cut_B.obj).")
-      .def_property_readonly("cut", &Map::cut, R"(The cut as arrays: a dict with
+  py::class_<Map> c(m, "Map", "The verified map between meshes A and B, made by liftmap.map.");
+  def_sides(c, "a_to_b", "b_to_a", &Map::on_inputs,
+            "VertexMap f: per vertex of A, a face of B and barycentric coordinates (A_to_B.txt).",
+            "VertexMap g: per vertex of B, a face of A and barycentric coordinates (B_to_A.txt).");
+  def_sides(c, "cut_a_to_b", "cut_b_to_a", &Map::on_cut,
+            "VertexMap f on the cut mesh: per vertex of cut['A'] (vt of cut_A.obj), a face of cut['B']['F_cut'] "
+            "(cut_A_to_B.txt).",
+            "VertexMap g on the cut mesh: per vertex of cut['B'], a face of cut['A']['F_cut'] (cut_B_to_A.txt).");
+  def_sides(c, "flattening_a", "flattening_b", &Map::flattening,
+            "(#Vc_A, 2) float64: Phi, the flattening of A's cut mesh (vt of cut_A.obj).",
+            "(#Vc_B, 2) float64: Psi, the flattening of B's cut mesh (vt of cut_B.obj).");
+  c.def_property_readonly("cut", &Map::cut, R"(The cut as arrays: a dict with
   "A", "B": dicts of one side:
     "V" (#Vr, 3) float64, "F" (#Fr, 3) int32: the refined mesh (the cut paths run along its edges);
     "face_to_input" (#Fr,) int32: the input face holding each refined face;
