@@ -117,3 +117,17 @@ def test_progress_reports_every_stage(pair):
     stages = []
     liftmap.map(*pair, max_iterations=1, progress=lambda stage, message: stages.append(stage))
     assert {"cut", "flatten", "lift", "verify"} <= set(stages)
+
+
+def test_fix_orientation_keeps_the_given_vertex_order(sphere_map, pair):
+    VA, FA, VB, FB, landmarks = pair
+    inside_out = FA[:, [0, 2, 1]]
+    with pytest.raises(liftmap.InvalidInputError, match="mesh A: cannot be mapped: the faces are oriented inward"):
+        liftmap.map(VA, inside_out, VB, FB, landmarks, threads=THREADS)
+    with pytest.warns(UserWarning, match="mesh A is inside-out"):
+        m = liftmap.map(VA, inside_out, VB, FB, landmarks, threads=THREADS, fix_orientation=True)
+    assert m.report["input"]["A"]["faces_reversed"] and not m.report["input"]["B"]["faces_reversed"]
+    np.testing.assert_array_equal(m.a_to_b.barycentric, sphere_map.a_to_b.barycentric)
+    np.testing.assert_array_equal(m.b_to_a.faces, sphere_map.b_to_a.faces)
+    np.testing.assert_array_equal(m.b_to_a.barycentric, sphere_map.b_to_a.barycentric[:, [0, 2, 1]])
+    np.testing.assert_allclose(m.b_to_a.points(), sphere_map.b_to_a.points(), atol=1e-15)
