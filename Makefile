@@ -8,7 +8,7 @@ FUZZ_SECONDS ?= 600
 FUZZ_JOBS  ?= 1
 JOBS       ?= 2
 LIFTMAP    := $(BUILD)/app/liftmap
-SOURCES    := $(shell find src app tests bench fuzz -name '*.cpp' -o -name '*.h' 2>/dev/null)
+SOURCES    := $(shell find src app python tests bench fuzz -name '*.cpp' -o -name '*.h' 2>/dev/null)
 
 .PHONY: all deps meshes build build-asan test test-slow test-blas-kernels demo bench fuzz lint format clean
 

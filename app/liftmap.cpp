@@ -11,11 +11,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <new>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -23,37 +22,16 @@
 #include "core/errors.h"
 #include "cut/write_cut.h"
 #include "io/landmarks.h"
-#include "io/output_file.h"
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "map/map_meshes.h"
 #include "map/transfer.h"
-#include "map/write_figures.h"
 #include "map/write_map.h"
 
 namespace {
 
 using liftmap::ExitCode;
-
-/// The report of one mesh as JSON.
-nlohmann::json mesh_json(const std::string& path, const liftmap::MeshReport& r) {
-  nlohmann::json j;
-  j["mesh"] = path;
-  j["vertices"] = r.n_vertices;
-  j["faces"] = r.n_faces;
-  j["edges"] = r.n_edges;
-  j["connected_components"] = r.n_components;
-  j["boundary_edges"] = r.n_boundary_edges;
-  j["boundary_loops"] = r.n_boundary_loops ? nlohmann::json(*r.n_boundary_loops) : nlohmann::json(nullptr);
-  j["euler_characteristic"] = r.euler_characteristic;
-  j["genus"] = r.genus ? nlohmann::json(*r.genus) : nlohmann::json(nullptr);
-  j["mappable"] = r.mappable();
-  j["problems"] = nlohmann::json::array();
-  for (const auto& p : r.problems)
-    j["problems"].push_back({{"kind", p.kind}, {"count", p.count}, {"examples", p.examples}});
-  return j;
-}
 
 /// Prints the report of one mesh as text.
 void print_mesh_report(const std::string& path, const liftmap::MeshReport& r) {
@@ -95,7 +73,7 @@ int run_check(const std::vector<std::string>& paths, const std::string& landmark
   for (size_t i = 0; i < paths.size(); ++i) {
     const liftmap::MeshReport r = liftmap::check_mesh(meshes[i].V, meshes[i].F);
     if (as_json) {
-      doc["meshes"].push_back(mesh_json(paths[i], r));
+      doc["meshes"].push_back(liftmap::mesh_report_json(r, paths[i]));
     } else {
       print_mesh_report(paths[i], r);
     }
@@ -134,13 +112,6 @@ int run_check(const std::vector<std::string>& paths, const std::string& landmark
   for (const std::string& e : errors) std::cerr << "liftmap: " << e << '\n';
   return code;
 }
-
-/// The most threads `--threads` accepts: 4 per hardware thread (more only cost memory, and thread creation
-/// fails in OpenMP long before an int overflows).
-int max_threads() { return 4 * static_cast<int>(std::max(1U, std::thread::hardware_concurrency())); }
-
-/// The most outer iterations `--max-iterations` accepts (a run stops at the tolerance long before).
-constexpr int kMaxOuterIterations = 10000;
 
 /// A finite number > 0 (CLI::PositiveNumber lets nan and inf through).
 const CLI::Validator kFinitePositive(
@@ -183,47 +154,31 @@ void add_pair_options(CLI::App* cmd, PairJob& job) {
                 "rejecting it");
   cmd->add_option("--threads", job.threads,
                   "Threads for the per-face work, 1 to 4 per hardware thread (default: all hardware threads)")
-      ->check(CLI::Range(1, max_threads()));
+      ->check(CLI::Range(1, liftmap::MapOptionLimits::max_threads()));
 }
-
-struct Inputs {
-  liftmap::TriangleMesh a, b;
-  liftmap::Landmarks landmarks;
-  bool flipped_a = false, flipped_b = false;  ///< faces reversed by --fix-orientation
-};
 
 /// --fix-orientation: reverses the faces of a mesh whose signed volume is negative, with a warning. Whether
 /// the mesh is mappable otherwise is left to the one validation that follows.
 bool fix_orientation(liftmap::TriangleMesh& mesh, const std::string& path) {
-  if (mesh.F.rows() == 0 || mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows() || !mesh.V.allFinite()) {
-    return false;
-  }
-  const double volume = liftmap::signed_volume(mesh.V, mesh.F);
-  if (!(volume < 0)) return false;
-  mesh.F.col(1).swap(mesh.F.col(2));
-  std::cerr << "liftmap: warning: " << path << " is inside-out (signed volume " << liftmap::figure(volume)
+  const std::optional<double> volume = liftmap::reverse_if_inside_out(mesh.V, mesh.F);
+  if (!volume) return false;
+  std::cerr << "liftmap: warning: " << path << " is inside-out (signed volume " << liftmap::figure(*volume)
             << "): its faces are reversed (--fix-orientation); map files into it keep the vertex order of its file\n";
   return true;
-}
-
-/// Barycentric coordinates of points of a mesh whose faces fix_orientation reversed, in the order of the faces'
-/// vertices in its file.
-void to_file_order(std::vector<liftmap::SurfacePoint>& points) {
-  for (liftmap::SurfacePoint& p : points) std::swap(p.bary[1], p.bary[2]);
 }
 
 /// Reads the inputs of `map` or `cut` and prepares the output folder for the files of `map` (which include
 /// those of `cut`: a `cut` into a map's folder removes the map's files too, so the folder never mixes two runs).
 /// The meshes are validated later, once, by map_meshes or run_cut.
-Inputs read_inputs(const PairJob& job) {
-  Inputs in;
+liftmap::MapInputs read_inputs(const PairJob& job) {
+  liftmap::MapInputs in{job.path_a, job.path_b, {}, {}, {}, false, false};
   in.a = liftmap::read_mesh(job.path_a);
   in.b = liftmap::read_mesh(job.path_b);
   in.landmarks =
       liftmap::read_landmarks(job.landmarks_path, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
   if (job.fix_orientation) {
-    in.flipped_a = fix_orientation(in.a, job.path_a);
-    in.flipped_b = fix_orientation(in.b, job.path_b);
+    in.reversed_a = fix_orientation(in.a, job.path_a);
+    in.reversed_b = fix_orientation(in.b, job.path_b);
   }
   liftmap::prepare_output_folder(job.out_dir, liftmap::map_output_names(),
                                  {job.path_a, job.path_b, job.landmarks_path});
@@ -232,12 +187,7 @@ Inputs read_inputs(const PairJob& job) {
 
 liftmap::MapOptions map_options(const PairJob& job) {
   liftmap::MapOptions o;
-  o.cut.tree = job.tree == "path" ? liftmap::CutOptions::Tree::kPath : liftmap::CutOptions::Tree::kMinimumSpanning;
-  o.flatten.p = job.p == "inf" ? std::numeric_limits<double>::infinity() : 2.0;
-  o.flatten.h = job.h == "eq2" ? liftmap::DistortionCombiner::kMax : liftmap::DistortionCombiner::kNorm;
-  o.flatten.method = job.solver == "barrier"       ? liftmap::SubproblemSolver::kBarrier
-                     : job.solver == "primal-dual" ? liftmap::SubproblemSolver::kPrimalDual
-                                                   : liftmap::SubproblemSolver::kAuto;
+  liftmap::set_map_choices(o, {job.p, job.h, job.solver, job.tree});
   o.flatten.normalize_area = !job.no_normalize;
   o.flatten.relative_tolerance = job.tolerance;
   o.flatten.max_iterations = job.max_iterations;
@@ -254,51 +204,12 @@ liftmap::MapOptions map_options(const PairJob& job) {
   return o;
 }
 
-std::string out_path(const PairJob& job, const std::string& name) {
-  return (std::filesystem::path(job.out_dir) / name).string();
-}
-
 int run_map(const PairJob& job) {
-  const Inputs in = read_inputs(job);
+  const liftmap::MapInputs in = read_inputs(job);
   const liftmap::MapOptions options = map_options(job);
   const liftmap::MapResult map =
       liftmap::map_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options);
-  // The map files refer to the faces of the input files, in their files' vertex order.
-  std::vector<liftmap::SurfacePoint> a_to_b = map.a_to_b, b_to_a = map.b_to_a;
-  liftmap::TriangleMesh file_a = in.a, file_b = in.b;
-  if (in.flipped_b) {
-    to_file_order(a_to_b);
-    file_b.F.col(1).swap(file_b.F.col(2));
-  }
-  if (in.flipped_a) {
-    to_file_order(b_to_a);
-    file_a.F.col(1).swap(file_a.F.col(2));
-  }
-  liftmap::write_vertex_map(out_path(job, "A_to_B.txt"), a_to_b,
-                            "liftmap map of A = " + job.path_a + " onto B = " + job.path_b);
-  liftmap::write_vertex_map(out_path(job, "B_to_A.txt"), b_to_a,
-                            "liftmap map of B = " + job.path_b + " onto A = " + job.path_a);
-  liftmap::write_barycentric_matrix(out_path(job, "A_to_B.ijv"), a_to_b, file_b.F);
-  liftmap::write_barycentric_matrix(out_path(job, "B_to_A.ijv"), b_to_a, file_a.F);
-  liftmap::write_cut(job.out_dir, map.cut, map.flattening.Phi, map.flattening.Psi);
-  liftmap::write_vertex_map(out_path(job, "cut_A_to_B.txt"), map.cut_a_to_b,
-                            "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
-  liftmap::write_vertex_map(out_path(job, "cut_B_to_A.txt"), map.cut_b_to_a,
-                            "per vt of cut_B.obj: face of cut_A.obj and barycentric coordinates");
-  if (options.progress) options.progress("render", "render.png, distortion.png, textured meshes");
-  liftmap::write_map_render(out_path(job, "render.png"), map, in.a, in.b, in.landmarks.a, in.landmarks.b,
-                            "A: " + std::filesystem::path(job.path_a).filename().string(),
-                            "B: " + std::filesystem::path(job.path_b).filename().string());
-  liftmap::write_distortion_histogram(out_path(job, "distortion.png"), map);
-  liftmap::write_textured_meshes(job.out_dir, map);
-  // Last: a folder with a report.json holds every file of this run.
-  liftmap::OutputFile report(out_path(job, "report.json"));
-  nlohmann::json report_json = liftmap::map_report(map, job.path_a, in.a, job.path_b, in.b, in.landmarks, options);
-  report_json["input"]["A"]["faces_reversed"] = in.flipped_a;
-  report_json["input"]["B"]["faces_reversed"] = in.flipped_b;
-  const std::string text = report_json.dump(2) + '\n';
-  std::fputs(text.c_str(), report.get());
-  report.close();
+  liftmap::write_map_folder(job.out_dir, map, in, liftmap::map_report(map, in, options), options.progress);
   if (!map.verification.passed) {
     std::cerr << "liftmap: verification failed (outputs kept in " << job.out_dir
               << ", see report.json): " << map.verification.failures.front() << '\n';
@@ -313,7 +224,7 @@ int run_map(const PairJob& job) {
 }
 
 int run_cut(const PairJob& job) {
-  const Inputs in = read_inputs(job);
+  const liftmap::MapInputs in = read_inputs(job);
   liftmap::require_mappable(liftmap::check_mesh(in.a.V, in.a.F), job.path_a);
   liftmap::require_mappable(liftmap::check_mesh(in.b.V, in.b.F), job.path_b);
   liftmap::MapOptions options = map_options(job);
@@ -436,10 +347,10 @@ int run(int argc, char** argv) {
       ->check(kFinitePositive)
       ->capture_default_str();
   map->add_option("--max-iterations", map_job.max_iterations, "Outer iterations of the flattening")
-      ->check(CLI::Range(0, kMaxOuterIterations))
+      ->check(CLI::Range(0, liftmap::MapOptionLimits::kMaxOuterIterations))
       ->capture_default_str();
   map->add_option("--samples", map_job.samples, "Distortion of f, g: n^2 samples per face")
-      ->check(CLI::Range(1, 10))
+      ->check(CLI::Range(1, liftmap::MapOptionLimits::kMaxSamplesPerEdge))
       ->capture_default_str();
 
   PairJob cut_job;

@@ -12,7 +12,8 @@ packages=(
   libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopenblas0-serial
   libgtest-dev libcli11-dev nlohmann-json3-dev libstb-dev
-  python3 python3-numpy python3-cvxopt python3-matplotlib
+  python3 python3-dev python3-numpy python3-cvxopt python3-matplotlib
+  pybind11-dev python3-pytest
   clang-format clang-tidy
 )
 missing=()

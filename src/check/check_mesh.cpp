@@ -1,5 +1,7 @@
 #include "check/check_mesh.h"
 
+#include <nlohmann/json.hpp>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -315,6 +317,32 @@ double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     sum += p.dot(q.cross(w));
   }
   return sum / 6;
+}
+
+nlohmann::json mesh_report_json(const MeshReport& r, const std::string& name) {
+  nlohmann::json j;
+  j["mesh"] = name;
+  j["vertices"] = r.n_vertices;
+  j["faces"] = r.n_faces;
+  j["edges"] = r.n_edges;
+  j["connected_components"] = r.n_components;
+  j["boundary_edges"] = r.n_boundary_edges;
+  j["boundary_loops"] = r.n_boundary_loops ? nlohmann::json(*r.n_boundary_loops) : nlohmann::json(nullptr);
+  j["euler_characteristic"] = r.euler_characteristic;
+  j["genus"] = r.genus ? nlohmann::json(*r.genus) : nlohmann::json(nullptr);
+  j["mappable"] = r.mappable();
+  j["problems"] = nlohmann::json::array();
+  for (const auto& p : r.problems)
+    j["problems"].push_back({{"kind", p.kind}, {"count", p.count}, {"examples", p.examples}});
+  return j;
+}
+
+std::optional<double> reverse_if_inside_out(const Eigen::MatrixXd& V, Eigen::MatrixXi& F) {
+  if (F.rows() == 0 || F.minCoeff() < 0 || F.maxCoeff() >= V.rows() || !V.allFinite()) return std::nullopt;
+  const double volume = signed_volume(V, F);
+  if (!(volume < 0)) return std::nullopt;
+  F.col(1).swap(F.col(2));
+  return volume;
 }
 
 void require_mappable(const MeshReport& report, const std::string& path) {

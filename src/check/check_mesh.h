@@ -2,6 +2,7 @@
 /// Mesh validation: topology, geometry and the conditions the mapping pipeline needs.
 
 #include <Eigen/Core>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +56,18 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 /// from outside (normals outward), negative for an inside-out mesh. Meaningless for an open mesh.
 /// \param V #V by 3 positions; \param F #F by 3 faces, indices in range
 double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+/// The report as JSON, as `liftmap check --json` prints it per mesh: counts, topology, "mappable" and "problems"
+/// (kind, count, examples naming the elements); undefined counts (boundary loops, genus of a non-manifold) are null.
+/// \param name the mesh's file name or another label, stored as "mesh"
+nlohmann::json mesh_report_json(const MeshReport& report, const std::string& name);
+
+/// Reverses the faces of a closed mesh whose signed volume is negative (inside-out), so that its normals point
+/// outward (`liftmap map --fix-orientation`). Meshes with out-of-range indices or non-finite coordinates are left
+/// to check_mesh and never reversed.
+/// \param F #F by 3 faces, columns 1 and 2 swapped if reversed
+/// \return the signed volume before the reversal if the faces were reversed, nullopt otherwise
+std::optional<double> reverse_if_inside_out(const Eigen::MatrixXd& V, Eigen::MatrixXi& F);
 
 /// Throws InvalidInputError("<path>: <summary>") unless the mesh is mappable.
 void require_mappable(const MeshReport& report, const std::string& path);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <mutex>
 #include <numeric>
 #include <vector>
 
@@ -34,6 +35,11 @@ namespace {
 // sets it to one thread while SerialBlas lives. Measured with the pthreads build (profile_flatten, camel-cow's first
 // outer iteration, 35 factorisations in its first centring): 0.80 s of factorisation with its pool, 0.60 s with it set
 // to one thread, the same as the serial build.
+// One SerialBlas at a time in the process: Debian's serial OpenBLAS shares its work buffers between calling threads
+// without a lock (two maps in two threads gave different factors: sphere-ellipsoid maps differing by up to 0.97 in
+// a barycentric coordinate, none with the reference BLAS), and the settings saved and restored here are the
+// process's (max-active-levels, OpenBLAS's thread count), which two overlapping lifetimes would restore wrongly.
+// Concurrent maps therefore take turns in CHOLMOD's factorisations only.
 class SerialBlas {
  public:
   SerialBlas();
@@ -42,8 +48,16 @@ class SerialBlas {
   SerialBlas& operator=(const SerialBlas&) = delete;
 
  private:
+  static std::mutex& process_lock();
+
+  std::lock_guard<std::mutex> lock_;  // first: held before the settings are saved, released after they are restored
   int threads_, levels_, blas_threads_ = 0;
 };
+
+std::mutex& SerialBlas::process_lock() {
+  static std::mutex m;
+  return m;
+}
 
 /// OpenBLAS's thread-count calls, if libblas.so.3 is OpenBLAS (Debian's alternatives choose it at run time).
 struct OpenBlasThreads {
@@ -63,7 +77,8 @@ const OpenBlasThreads& openblas_threads() {
   return calls;
 }
 
-SerialBlas::SerialBlas() : threads_(omp_get_max_threads()), levels_(omp_get_max_active_levels()) {
+SerialBlas::SerialBlas()
+    : lock_(process_lock()), threads_(omp_get_max_threads()), levels_(omp_get_max_active_levels()) {
   omp_set_num_threads(1);
   omp_set_max_active_levels(0);
   g_serial_regions = true;

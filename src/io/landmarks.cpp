@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "core/errors.h"
 #include "io/output_file.h"
@@ -18,7 +19,8 @@ namespace {
   throw InvalidInputError(path + ":" + std::to_string(line) + ": " + what);
 }
 
-int parse_index(const std::string& path, int line, const std::string& token, char side, int n) {
+/// A vertex index token: a plain non-negative integer (other forms are reserved for surface points).
+long long parse_index(const std::string& path, int line, const std::string& token, char side, int n) {
   const bool digits = !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
   if (!digits) {
     if (token[0] == '-') fail(path, line, "negative vertex index '" + token + "' for mesh " + side);
@@ -29,11 +31,62 @@ int parse_index(const std::string& path, int line, const std::string& token, cha
   }
   long long v = 0;
   const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (ec != std::errc() || v >= n) {
+  if (ec != std::errc()) {
     fail(path, line, "vertex " + token + " is out of range for mesh " + side + " (" + std::to_string(n) + " vertices)");
   }
-  return static_cast<int>(v);
+  return v;
 }
+
+/// The checks every landmark pair passes, from a file or from arrays: indices in range, no vertex twice per side.
+class LandmarkCollector {
+ public:
+  /// \param unit how messages call a pair's position: "line" (a file's line) or "row" (an array's row)
+  LandmarkCollector(std::string name, std::string unit, int n_vertices_a, int n_vertices_b)
+      : name_(std::move(name)), unit_(std::move(unit)), n_a_(n_vertices_a), n_b_(n_vertices_b) {}
+
+  void add(long long a, long long b, int line) {
+    const int va = vertex(a, 'A', n_a_, line), vb = vertex(b, 'B', n_b_, line);
+    unique(line_of_a_, va, 'A', line);
+    unique(line_of_b_, vb, 'B', line);
+    lm_.a.emplace_back(va);
+    lm_.b.emplace_back(vb);
+    lm_.line.push_back(line);
+  }
+
+  Landmarks finish() {
+    if (lm_.a.size() < 2) {
+      throw InvalidInputError(name_ + ": " + std::to_string(lm_.a.size()) + " landmark pair(s); at least 2 are needed");
+    }
+    return std::move(lm_);
+  }
+
+ private:
+  [[noreturn]] void fail_at(int line, const std::string& what) const {
+    if (unit_ == "line") fail(name_, line, what);
+    throw InvalidInputError(name_ + ": " + unit_ + " " + std::to_string(line) + ": " + what);
+  }
+
+  int vertex(long long v, char side, int n, int line) const {
+    if (v < 0) fail_at(line, "negative vertex index '" + std::to_string(v) + "' for mesh " + side);
+    if (v >= n) {
+      fail_at(line, "vertex " + std::to_string(v) + " is out of range for mesh " + side + " (" + std::to_string(n) +
+                        " vertices)");
+    }
+    return static_cast<int>(v);
+  }
+
+  void unique(std::map<int, int>& line_of, int v, char side, int line) const {
+    if (auto [it, fresh] = line_of.emplace(v, line); !fresh) {
+      fail_at(line, "vertex " + std::to_string(v) + " of mesh " + side + " is already a landmark (" + unit_ + " " +
+                        std::to_string(it->second) + ")");
+    }
+  }
+
+  std::string name_, unit_;
+  int n_a_, n_b_;
+  std::map<int, int> line_of_a_, line_of_b_;
+  Landmarks lm_;
+};
 
 }  // namespace
 
@@ -46,8 +99,7 @@ Landmarks read_landmarks(const std::string& path, int n_vertices_a, int n_vertic
 }
 
 Landmarks read_landmarks(std::istream& in, const std::string& path, int n_vertices_a, int n_vertices_b) {
-  Landmarks lm;
-  std::map<int, int> line_of_a, line_of_b;
+  LandmarkCollector collector(path, "line", n_vertices_a, n_vertices_b);
   std::string text;
   int line_no = 0;
   while (std::getline(in, text)) {
@@ -65,27 +117,18 @@ Landmarks read_landmarks(std::istream& in, const std::string& path, int n_vertic
     if (t.size() != 2) {
       fail(path, line_no, "expected two vertex indices 'iA iB', found " + std::to_string(t.size()) + " fields");
     }
-    const int a = parse_index(path, line_no, t[0], 'A', n_vertices_a);
-    const int b = parse_index(path, line_no, t[1], 'B', n_vertices_b);
-    if (auto [it, fresh] = line_of_a.emplace(a, line_no); !fresh) {
-      fail(
-          path, line_no,
-          "vertex " + std::to_string(a) + " of mesh A is already a landmark (line " + std::to_string(it->second) + ")");
-    }
-    if (auto [it, fresh] = line_of_b.emplace(b, line_no); !fresh) {
-      fail(
-          path, line_no,
-          "vertex " + std::to_string(b) + " of mesh B is already a landmark (line " + std::to_string(it->second) + ")");
-    }
-    lm.a.emplace_back(a);
-    lm.b.emplace_back(b);
-    lm.line.push_back(line_no);
+    collector.add(parse_index(path, line_no, t[0], 'A', n_vertices_a),
+                  parse_index(path, line_no, t[1], 'B', n_vertices_b), line_no);
   }
   if (in.bad()) throw IoError(path + ": read error");
-  if (lm.a.size() < 2) {
-    throw InvalidInputError(path + ": " + std::to_string(lm.a.size()) + " landmark pair(s); at least 2 are needed");
-  }
-  return lm;
+  return collector.finish();
+}
+
+Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, const std::string& name, int n_vertices_a,
+                         int n_vertices_b) {
+  LandmarkCollector collector(name, "row", n_vertices_a, n_vertices_b);
+  for (size_t i = 0; i < pairs.size(); ++i) collector.add(pairs[i][0], pairs[i][1], static_cast<int>(i));
+  return collector.finish();
 }
 
 void write_landmarks(const std::string& path, const Landmarks& landmarks) {

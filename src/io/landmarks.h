@@ -7,6 +7,7 @@
 /// are rejected for now with a message saying so; a future version accepts them without changing the meaning of
 /// existing files.
 
+#include <array>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -30,6 +31,14 @@ Landmarks read_landmarks(const std::string& path, int n_vertices_a, int n_vertic
 
 /// read_landmarks from a stream; `name` stands for the file in messages.
 Landmarks read_landmarks(std::istream& in, const std::string& name, int n_vertices_a, int n_vertices_b);
+
+/// Landmarks given as index pairs (e.g. a k by 2 array from Python), with the checks of read_landmarks.
+/// \param pairs k pairs {vertex of A, vertex of B}
+/// \param name how messages name the pairs; each message names the offending row (0-based)
+/// \throw InvalidInputError naming the row for a negative or out-of-range index or a vertex used twice on one
+///        side, or if there are fewer than 2 pairs.
+Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, const std::string& name, int n_vertices_a,
+                         int n_vertices_b);
 
 /// Writes landmarks in the format above.
 /// \throw IoError if the file cannot be written.

@@ -1,12 +1,16 @@
 #include "map/map_meshes.h"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
+#include <thread>
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
@@ -25,6 +29,23 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 /// The longest stretch without a progress line inside a convex subproblem.
 constexpr double kProgressSeconds = 3;
+
+/// OpenMP's thread count of the calling thread (its nthreads-var ICV), set for a scope and restored after it.
+class ThreadCountScope {
+ public:
+  explicit ThreadCountScope(int threads) : saved_(omp_get_max_threads()), set_(threads > 0) {
+    if (set_) omp_set_num_threads(threads);
+  }
+  ~ThreadCountScope() {
+    if (set_) omp_set_num_threads(saved_);
+  }
+  ThreadCountScope(const ThreadCountScope&) = delete;
+  ThreadCountScope& operator=(const ThreadCountScope&) = delete;
+
+ private:
+  int saved_;
+  bool set_;
+};
 
 // Barycentric coordinates of p in the triangle (a, b, c) of R^3, p assumed in (or very near) its plane.
 std::array<double, 3> barycentric_3d(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -205,6 +226,7 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
     throw InvalidInputError("map: need at least 2 corresponding landmarks on each mesh");
   }
 
+  const ThreadCountScope threads(options.threads);
   MapResult r;
   auto t0 = Clock::now();
   progress("cut",
@@ -388,6 +410,31 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   progress("verify", ver.passed ? "passed" : "FAILED: " + ver.failures.front());
   return r;
 }
+
+namespace {
+
+/// The index of `value` in `accepted`. \throw UsageError naming the option and the accepted values otherwise.
+size_t choice(const std::string& option, const std::string& value, const std::vector<std::string>& accepted) {
+  for (size_t i = 0; i < accepted.size(); ++i) {
+    if (value == accepted[i]) return i;
+  }
+  std::string list;
+  for (const std::string& a : accepted) list += (list.empty() ? "" : ", ") + a;
+  throw UsageError(option + ": '" + value + "' is not one of " + list);
+}
+
+}  // namespace
+
+void set_map_choices(MapOptions& options, const MapChoiceNames& names) {
+  options.flatten.p = choice("p", names.p, {"2", "inf"}) == 1 ? std::numeric_limits<double>::infinity() : 2.0;
+  options.flatten.h = choice("h", names.h, {"eq3", "eq2"}) == 1 ? DistortionCombiner::kMax : DistortionCombiner::kNorm;
+  constexpr std::array kSolvers = {SubproblemSolver::kAuto, SubproblemSolver::kBarrier, SubproblemSolver::kPrimalDual};
+  options.flatten.method = kSolvers[choice("solver", names.solver, {"auto", "barrier", "primal-dual"})];
+  options.cut.tree =
+      choice("tree", names.tree, {"mst", "path"}) == 1 ? CutOptions::Tree::kPath : CutOptions::Tree::kMinimumSpanning;
+}
+
+int MapOptionLimits::max_threads() { return 4 * static_cast<int>(std::max(1U, std::thread::hardware_concurrency())); }
 
 SurfacePoint evaluate_map(const MapResult& map, Side side, const SurfacePoint& x) {
   const MapIndex& index = *map.index;

@@ -25,11 +25,35 @@ struct MapOptions {
   /// Distortion of the maps f and g is measured by dense sampling: each face is split into n^2 sub-triangles
   /// and the map is evaluated at their centroids, each weighted by its area.
   int distortion_samples_per_edge = 2;
+  /// Threads of the per-face work while map_meshes runs, 1 to MapOptionLimits::max_threads(); 0: the calling
+  /// thread's OpenMP setting. Set on the calling thread only and restored before map_meshes returns.
+  int threads = 0;
   /// How messages name the two input meshes (the CLI passes their file names).
   std::string name_a = "mesh A", name_b = "mesh B";
   /// Called with (stage, message) as the pipeline advances; empty: silent.
   std::function<void(const std::string&, const std::string&)> progress;
 };
+
+/// The ranges the front ends (CLI, Python) accept for MapOptions' numbers.
+struct MapOptionLimits {
+  static constexpr int kMaxOuterIterations = 10000;  ///< max_iterations: a run stops at the tolerance long before
+  static constexpr int kMaxSamplesPerEdge = 10;      ///< distortion_samples_per_edge: from 1
+  /// threads: 4 per hardware thread (more only cost memory, and thread creation fails in OpenMP long before an
+  /// int overflows).
+  static int max_threads();
+};
+
+/// The front ends' names of MapOptions' choices (CLI: --p, --h, --solver, --tree; Python: keyword arguments).
+struct MapChoiceNames {
+  std::string p = "2";          ///< norm of the energy (10a): "2" or "inf"
+  std::string h = "eq3";        ///< per-face distortion: "eq3" (sqrt(Sigma^2 + sigma^-2)) or "eq2" (max)
+  std::string solver = "auto";  ///< "auto", "barrier" or "primal-dual"
+  std::string tree = "mst";     ///< cut tree: "mst" (paper) or "path"
+};
+
+/// Sets the choices of `options` from their names.
+/// \throw UsageError naming the option and the accepted values if a name is not one of them.
+void set_map_choices(MapOptions& options, const MapChoiceNames& names);
 
 /// Area-weighted statistics of a per-face (or per-sample) distortion max(Sigma, 1/sigma) (paper §4.2).
 struct DistortionStats {

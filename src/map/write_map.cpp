@@ -2,12 +2,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "core/errors.h"
 #include "cut/write_cut.h"
 #include "io/output_file.h"
+#include "io/vertex_map.h"
 #include "io/write_mesh.h"
+#include "map/write_figures.h"
 
 namespace liftmap {
 
@@ -129,6 +133,66 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                        {"round_trip_error", v.round_trip_error},
                        {"landmark_error", v.landmark_error}};
   return j;
+}
+
+std::vector<SurfacePoint> images_in_given_order(std::vector<SurfacePoint> images, bool target_reversed) {
+  if (target_reversed) {
+    for (SurfacePoint& p : images) std::swap(p.bary[1], p.bary[2]);
+  }
+  return images;
+}
+
+nlohmann::json map_report(const MapResult& map, const MapInputs& inputs, const MapOptions& options) {
+  nlohmann::json j = map_report(map, inputs.name_a, inputs.a, inputs.name_b, inputs.b, inputs.landmarks, options);
+  j["input"]["A"]["faces_reversed"] = inputs.reversed_a;
+  j["input"]["B"]["faces_reversed"] = inputs.reversed_b;
+  return j;
+}
+
+namespace {
+
+/// Faces as in the input's file: before reverse_if_inside_out.
+Eigen::MatrixXi faces_as_given(const TriangleMesh& mesh, bool reversed) {
+  Eigen::MatrixXi F = mesh.F;
+  if (reversed) F.col(1).swap(F.col(2));
+  return F;
+}
+
+std::string in_folder(const std::string& dir, const std::string& name) {
+  return (std::filesystem::path(dir) / name).string();
+}
+
+/// A_to_B.txt, B_to_A.txt and their .ijv matrices: faces and barycentric coordinates of the inputs as given.
+void write_input_maps(const std::string& dir, const MapResult& map, const MapInputs& in) {
+  const std::vector<SurfacePoint> a_to_b = images_in_given_order(map.a_to_b, in.reversed_b);
+  const std::vector<SurfacePoint> b_to_a = images_in_given_order(map.b_to_a, in.reversed_a);
+  write_vertex_map(in_folder(dir, "A_to_B.txt"), a_to_b, "liftmap map of A = " + in.name_a + " onto B = " + in.name_b);
+  write_vertex_map(in_folder(dir, "B_to_A.txt"), b_to_a, "liftmap map of B = " + in.name_b + " onto A = " + in.name_a);
+  write_barycentric_matrix(in_folder(dir, "A_to_B.ijv"), a_to_b, faces_as_given(in.b, in.reversed_b));
+  write_barycentric_matrix(in_folder(dir, "B_to_A.ijv"), b_to_a, faces_as_given(in.a, in.reversed_a));
+}
+
+}  // namespace
+
+void write_map_folder(const std::string& dir, const MapResult& map, const MapInputs& in, const nlohmann::json& report,
+                      const std::function<void(const std::string&, const std::string&)>& progress) {
+  write_input_maps(dir, map, in);
+  write_cut(dir, map.cut, map.flattening.Phi, map.flattening.Psi);
+  write_vertex_map(in_folder(dir, "cut_A_to_B.txt"), map.cut_a_to_b,
+                   "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
+  write_vertex_map(in_folder(dir, "cut_B_to_A.txt"), map.cut_b_to_a,
+                   "per vt of cut_B.obj: face of cut_A.obj and barycentric coordinates");
+  if (progress) progress("render", "render.png, distortion.png, textured meshes");
+  write_map_render(in_folder(dir, "render.png"), map, in.a, in.b, in.landmarks.a, in.landmarks.b,
+                   "A: " + std::filesystem::path(in.name_a).filename().string(),
+                   "B: " + std::filesystem::path(in.name_b).filename().string());
+  write_distortion_histogram(in_folder(dir, "distortion.png"), map);
+  write_textured_meshes(dir, map);
+  // Last: a folder with a report.json holds every file of this run.
+  OutputFile file(in_folder(dir, "report.json"));
+  const std::string text = report.dump(2) + '\n';
+  std::fputs(text.c_str(), file.get());
+  file.close();
 }
 
 }  // namespace liftmap

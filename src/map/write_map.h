@@ -2,6 +2,7 @@
 /// The files `liftmap map` and `liftmap cut` write (README, "Output files").
 
 #include <Eigen/Core>
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -24,6 +25,29 @@ void write_barycentric_matrix(const std::string& path, const std::vector<Surface
 /// The names of every file `liftmap map` writes into its output folder (README, "Command line"), those of
 /// write_cut included, report.json last (the order they are written in).
 std::vector<std::string> map_output_names();
+
+/// What a map was made from, as the report and the output files name it.
+struct MapInputs {
+  std::string name_a, name_b;  ///< the input files (CLI) or labels given by the caller
+  TriangleMesh a, b;           ///< the meshes as mapped: faces reversed where reversed_a / reversed_b
+  Landmarks landmarks;
+  bool reversed_a = false, reversed_b = false;  ///< faces reversed by reverse_if_inside_out (--fix-orientation)
+};
+
+/// The images of a map in the vertex order of the target's faces as given, before reverse_if_inside_out: the
+/// order of the map files (barycentric coordinates 1 and 2 swapped if the target's faces were reversed).
+std::vector<SurfacePoint> images_in_given_order(std::vector<SurfacePoint> images, bool target_reversed);
+
+/// The report of a map as JSON (report.json), with "faces_reversed" per input.
+nlohmann::json map_report(const MapResult& map, const MapInputs& inputs, const MapOptions& options);
+
+/// Writes every file of map_output_names() into `dir` (README, "Output of liftmap map"), report.json last, its
+/// content `report`. Call prepare_output_folder first: it removes a previous run's files.
+/// \param progress called once before the pictures (empty: silent)
+/// \throw IoError if a file cannot be written.
+void write_map_folder(const std::string& dir, const MapResult& map, const MapInputs& inputs,
+                      const nlohmann::json& report,
+                      const std::function<void(const std::string&, const std::string&)>& progress = {});
 
 /// The report of a map as JSON: sizes, landmarks, options, timings, energies, distortion, verification.
 /// \param a, b the input meshes, read from path_a, path_b
