@@ -46,7 +46,11 @@ struct JointFlattenOptions {
   /// The convex subproblem solver. Its relative_gap is the finest gap any subproblem is solved to (see
   /// gap_fraction): 1e-5 is 100 times finer than the outer tolerance, and saves the last one or two centrings,
   /// which on whole-mesh disks run at the limits of double precision.
-  SubproblemSettings solver{.relative_gap = 1e-5};
+  SubproblemSettings solver = [] {
+    SubproblemSettings s;
+    s.relative_gap = 1e-5;
+    return s;
+  }();
   /// Each subproblem is solved to optimality within a certified relative gap that follows the outer loop's
   /// progress: gap_fraction times the relative decrease of the energy (8) in the previous outer iteration, clamped
   /// to [solver.relative_gap, max_subproblem_gap]; the first subproblem (from the Tutte start, which it improves

@@ -32,6 +32,12 @@ constexpr double kRounding = 1e-12;
 
 class flatten_primal_dual : public ::testing::TestWithParam<Combo> {};
 
+SubproblemSettings settings_with_gap(double gap) {
+  SubproblemSettings s;
+  s.relative_gap = gap;
+  return s;
+}
+
 // What a result of the primal-dual method guarantees: converged with the requested gap, or stopped at the precision
 // limit (reported as such) with a finite certified gap.
 void expect_honest_certificate(const SubproblemResult& r, double requested_gap) {
@@ -52,9 +58,8 @@ TEST_P(flatten_primal_dual, AgreesWithTheBarrierMethod) {
   const Combo combo = GetParam();
   const JointFlattenProblem jp = testing::camel_cow_patch_problem(combo);
   SparseCholesky chol_b, chol_p;
-  const SubproblemResult rb =
-      solve_convex_subproblem(jp.subproblem, jp.X0, SubproblemSettings{.relative_gap = kGap}, chol_b);
-  SubproblemSettings po{.relative_gap = kGap};
+  const SubproblemResult rb = solve_convex_subproblem(jp.subproblem, jp.X0, settings_with_gap(kGap), chol_b);
+  SubproblemSettings po = settings_with_gap(kGap);
   if (std::getenv("PD_TRACE")) {
     po.on_step = [](const SubproblemStep& st) {
       std::printf("  it %2d  mu %.3e  dres %.2e  step %.4f  f0 %.12g\n", st.centring, 1 / st.t, st.lambda2, st.step,
