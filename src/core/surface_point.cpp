@@ -1,5 +1,6 @@
 #include "core/surface_point.h"
 
+#include <algorithm>
 #include <cassert>
 
 namespace liftmap {
@@ -79,6 +80,16 @@ std::array<double, 3> barycentric_in_face(const Mesh& input, const SurfacePoint&
       return p.bary;
   }
   return b;
+}
+
+std::array<double, 3> clamp_barycentric(std::array<double, 3> w) {
+  double sum = 0;
+  for (double& x : w) {
+    x = std::max(x, 0.0);
+    sum += x;
+  }
+  for (double& x : w) x /= sum;
+  return w;
 }
 
 }  // namespace liftmap

@@ -37,4 +37,8 @@ SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p);
 /// \pre `f` contains `p` (a face around the vertex, a face of the edge, or the face itself).
 std::array<double, 3> barycentric_in_face(const Mesh& mesh, const SurfacePoint& p, FaceId f);
 
+/// w with its negative entries (rounding noise, of order -1e-16) set to 0, then divided by its sum: barycentric
+/// coordinates of a valid face point. \pre some entry of w is positive
+std::array<double, 3> clamp_barycentric(std::array<double, 3> w);
+
 }  // namespace liftmap

@@ -15,12 +15,7 @@ namespace {
 /// The most specific SurfacePoint for barycentric coordinates `b` in input face `f`. Coordinates that are
 /// exactly zero stay exactly zero through interpolation, so vertices and edges are recognised exactly.
 SurfacePoint canonical_point(const Mesh& input, FaceId f, std::array<double, 3> b) {
-  double sum = 0;
-  for (double& x : b) {
-    x = std::max(x, 0.0);
-    sum += x;
-  }
-  for (double& x : b) x /= sum;
+  b = clamp_barycentric(b);
   const int nonzero = (b[0] > 0) + (b[1] > 0) + (b[2] > 0);
   const auto fh = input.face_halfedges(f);
   if (nonzero == 1) {

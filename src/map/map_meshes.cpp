@@ -57,17 +57,6 @@ std::array<double, 3> barycentric_3d(const Eigen::Vector3d& p, const Eigen::Vect
   return w;
 }
 
-// Clamps rounding noise (coordinates of order -1e-16) so that the point is a valid face point.
-std::array<double, 3> clamp_barycentric(std::array<double, 3> w) {
-  double sum = 0;
-  for (double& x : w) {
-    x = std::max(x, 0.0);
-    sum += x;
-  }
-  for (double& x : w) x /= sum;
-  return w;
-}
-
 Eigen::Vector3d row3(const Eigen::MatrixXd& V, int i) { return V.row(i).transpose(); }
 
 /// Everything needed to translate between one input mesh and its cut disk.
@@ -213,40 +202,34 @@ struct MapIndex {
   std::unique_ptr<SideTranslator> a, b;
 };
 
-MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
-                     const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
-                     const std::vector<VertexId>& landmarks_b, const MapOptions& options) {
-  const auto t_start = Clock::now();
-  auto progress = [&](const std::string& stage, const std::string& message) {
-    if (options.progress) options.progress(stage, message);
-  };
-  require_mappable(check_mesh(VA, FA), options.name_a);
-  require_mappable(check_mesh(VB, FB), options.name_b);
-  if (landmarks_a.size() != landmarks_b.size() || landmarks_a.size() < 2) {
-    throw InvalidInputError("map: need at least 2 corresponding landmarks on each mesh");
-  }
+namespace {
 
-  const ThreadCountScope threads(options.threads);
-  MapResult r;
-  auto t0 = Clock::now();
+using Progress = std::function<void(const std::string&, const std::string&)>;
+
+/// Step 1: both meshes cut to disks along the same tree (paper §3.1); the disks' connectivity and positions.
+void cut_stage(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+               const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
+               const std::vector<VertexId>& landmarks_b, const MapOptions& options, const Progress& progress,
+               MapResult& r) {
+  const auto t0 = Clock::now();
   progress("cut",
            "cutting both meshes to disks along a tree through " + std::to_string(landmarks_a.size()) + " landmarks");
   r.cut = cut_meshes(VA, FA, VB, FB, landmarks_a, landmarks_b, options.cut);
   r.seconds.cut = seconds_since(t0);
-  const auto n_cut_a = static_cast<int>(r.cut.a.cut_to_refined.size());
-  const auto n_cut_b = static_cast<int>(r.cut.b.cut_to_refined.size());
-  r.disk_a = Mesh(r.cut.a.F_cut, n_cut_a);
-  r.disk_b = Mesh(r.cut.b.F_cut, n_cut_b);
+  r.disk_a = Mesh(r.cut.a.F_cut, static_cast<int>(r.cut.a.cut_to_refined.size()));
+  r.disk_b = Mesh(r.cut.b.F_cut, static_cast<int>(r.cut.b.cut_to_refined.size()));
   r.disk_va = r.cut.a.V(r.cut.a.cut_to_refined, Eigen::all);
   r.disk_vb = r.cut.b.V(r.cut.b.cut_to_refined, Eigen::all);
-  {
-    std::ostringstream s;
-    s << "done in " << r.seconds.cut << " s: disks of " << r.disk_a.n_faces() << " and " << r.disk_b.n_faces()
-      << " faces, " << r.cut.nu.size() << " boundary vertices each";
-    progress("cut", s.str());
-  }
+  std::ostringstream s;
+  s << "done in " << r.seconds.cut << " s: disks of " << r.disk_a.n_faces() << " and " << r.disk_b.n_faces()
+    << " faces, " << r.cut.nu.size() << " boundary vertices each";
+  progress("cut", s.str());
+}
 
-  t0 = Clock::now();
+/// Step 2: the joint flattening (Algorithm 2), with a progress line after every outer iteration and every few
+/// seconds inside a long subproblem.
+void flatten_stage(const MapOptions& options, const Progress& progress, MapResult& r) {
+  const auto t0 = Clock::now();
   FlatteningDisk m{&r.disk_a, r.disk_va, {}};
   FlatteningDisk n{&r.disk_b, r.disk_vb, {}};
   for (const auto& pair : r.cut.nu) {
@@ -288,8 +271,15 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   if (!r.flattening.stop_reason.empty()) progress("flatten", "stopped early: " + r.flattening.stop_reason);
   r.scale_a = r.flattening.scale_m;
   r.scale_b = r.flattening.scale_n;
+}
 
-  t0 = Clock::now();
+/// Step 3: the lifted bijection (§3.4), and the maps expressed on the input meshes (each input vertex's image as
+/// a face point of the other input mesh).
+void lift_stage(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                const Eigen::MatrixXi& FB, const MapOptions& options, const Progress& progress, MapResult& r) {
+  const auto n_cut_a = static_cast<int>(r.cut.a.cut_to_refined.size());
+  const auto n_cut_b = static_cast<int>(r.cut.b.cut_to_refined.size());
+  const auto t0 = Clock::now();
   progress("lift", "lifting the flattenings into the bijection");
   Eigen::MatrixXi nu(static_cast<Eigen::Index>(r.cut.nu.size()), 2);
   for (size_t i = 0; i < r.cut.nu.size(); ++i) nu.row(static_cast<Eigen::Index>(i)) << r.cut.nu[i][0], r.cut.nu[i][1];
@@ -333,10 +323,22 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   r.b_to_a = input_map(VB, tb, ta, r.disk_a, r.cut_b_to_a, "B");
   r.seconds.lift = seconds_since(t0);
   progress("lift", "done in " + std::to_string(r.seconds.lift) + " s");
+}
 
-  // Verification and distortion.
-  t0 = Clock::now();
-  MapVerification& ver = r.verification;
+}  // namespace
+
+MapVerification verify_map(const MapResult& r, const std::vector<VertexId>& landmarks_a,
+                           const std::vector<VertexId>& landmarks_b) {
+  const MapIndex& index = *r.index;
+  const Eigen::MatrixXd& VA = index.VA;
+  const Eigen::MatrixXd& VB = index.VB;
+  const Eigen::MatrixXi& FA = index.FA;
+  const Eigen::MatrixXi& FB = index.FB;
+  const SideTranslator& ta = *index.a;
+  const SideTranslator& tb = *index.b;
+  const auto n_cut_a = static_cast<int>(r.cut.a.cut_to_refined.size());
+  const auto n_cut_b = static_cast<int>(r.cut.b.cut_to_refined.size());
+  MapVerification ver;
   const Eigen::MatrixXd& Phi = r.flattening.Phi;
   const Eigen::MatrixXd& Psi = r.flattening.Psi;
   {
@@ -387,14 +389,19 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   require(ver.landmark_error < 1e-12, "landmark error " + figure(ver.landmark_error) + " >= 1e-12");
   ver.passed = ver.failures.empty();
 
-  // Distortion, on both meshes scaled to the same area as the flattening does.
+  return ver;
+}
+
+void map_distortion(MapResult& r, int samples_per_edge) {
+  const Eigen::MatrixXd& Phi = r.flattening.Phi;
+  const Eigen::MatrixXd& Psi = r.flattening.Psi;
   const JacobianOperator op_a = jacobian_operator(r.disk_va * r.scale_a, r.cut.a.F_cut);
   const JacobianOperator op_b = jacobian_operator(r.disk_vb * r.scale_b, r.cut.b.F_cut);
   const Eigen::MatrixXd P_a = similarity_parts(op_a, r.cut.a.F_cut, Phi * r.scale_a);
   const Eigen::MatrixXd P_b = similarity_parts(op_b, r.cut.b.F_cut, Psi * r.scale_a);
   r.distortion_phi = weighted_stats(true_distortion(P_a), op_a.area);
   r.distortion_psi = weighted_stats(true_distortion(P_b), op_b.area);
-  const int n_samples = std::max(1, options.distortion_samples_per_edge);
+  const int n_samples = std::max(1, samples_per_edge);
   const LiftedBijection& bij = *r.bijection;
   Eigen::VectorXd g_values, g_weights;
   sample_map_distortion(
@@ -405,9 +412,31 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
       g_values, g_weights);
   r.distortion_f = weighted_stats(r.f_samples, r.f_weights);
   r.distortion_g = weighted_stats(g_values, g_weights);
+}
+
+MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
+                     const std::vector<VertexId>& landmarks_b, const MapOptions& options) {
+  const auto t_start = Clock::now();
+  const Progress progress = [&](const std::string& stage, const std::string& message) {
+    if (options.progress) options.progress(stage, message);
+  };
+  require_mappable(check_mesh(VA, FA), options.name_a);
+  require_mappable(check_mesh(VB, FB), options.name_b);
+  if (landmarks_a.size() != landmarks_b.size() || landmarks_a.size() < 2) {
+    throw InvalidInputError("map: need at least 2 corresponding landmarks on each mesh");
+  }
+  const ThreadCountScope threads(options.threads);
+  MapResult r;
+  cut_stage(VA, FA, VB, FB, landmarks_a, landmarks_b, options, progress, r);
+  flatten_stage(options, progress, r);
+  lift_stage(VA, FA, VB, FB, options, progress, r);
+  const auto t0 = Clock::now();
+  r.verification = verify_map(r, landmarks_a, landmarks_b);
+  map_distortion(r, options.distortion_samples_per_edge);
   r.seconds.verify = seconds_since(t0);
   r.seconds.total = seconds_since(t_start);
-  progress("verify", ver.passed ? "passed" : "FAILED: " + ver.failures.front());
+  progress("verify", r.verification.passed ? "passed" : "FAILED: " + r.verification.failures.front());
   return r;
 }
 

@@ -122,6 +122,19 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
                      const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
                      const std::vector<VertexId>& landmarks_b, const MapOptions& options = {});
 
+/// The checks of a map made by map_meshes (MapVerification's fields): both flattenings free of flipped faces with
+/// boundary angle sums below 2 pi, Psi(f(x)) = Phi(x) and Phi(g(y)) = Psi(y) at every cut vertex (the lifting),
+/// g(f(v)) = v and f(g(w)) = w in R^3 at every input vertex, and f(landmark) = its partner.
+/// \pre `map` has its cut, flattening, bijection and input maps (the stages of map_meshes before verification)
+MapVerification verify_map(const MapResult& map, const std::vector<VertexId>& landmarks_a,
+                           const std::vector<VertexId>& landmarks_b);
+
+/// The distortion max(Sigma, 1/sigma) of the flattenings per face and of the maps f and g by dense sampling (each face
+/// split into samples_per_edge^2 sub-triangles, sub_triangle_centroids), both meshes scaled to the same area as the
+/// flattening: sets map.distortion_phi, distortion_psi, distortion_f, distortion_g, f_samples and f_weights.
+/// \pre as verify_map
+void map_distortion(MapResult& map, int samples_per_edge);
+
 /// Which input mesh a point or a map starts from.
 enum class Side { kA, kB };
 
