@@ -147,9 +147,8 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
 /// g on the bisector of the exterior wedge at its boundary vertex v, at half the mean length of v's two boundary
 /// edges. The ghost faces thus start as well-shaped triangles with identity Jacobians in every outer iteration.
 /// Ghost vertices carry no energy and are not part of the output, so each subproblem may choose them anew; kept
-/// from one subproblem to the next, they drifted outwards by the stretch bound's factor (kGhostStretch) per outer
-/// iteration (camel-cow: Sigma of ghost faces ~3e2 relative to their rest shape in iteration 4, ~4e6 in iteration
-/// 10, with sigma_tilde ~0.1), and those needle-like faces limited the Newton steps. No-op without ghost faces.
+/// from one subproblem to the next, they drift outwards by up to the stretch bound's factor (kGhostStretch) per
+/// outer iteration, and the needle-like faces limit the Newton steps. No-op without ghost faces.
 void place_ghost_vertices(ConvexSubproblem& problem, Eigen::MatrixXd& X);
 
 /// Sets every face's rotation (both meshes and ghosts) to the polar rotation of its Jacobian at X.
