@@ -21,6 +21,7 @@
 #include "check/check_mesh.h"
 #include "core/errors.h"
 #include "cut/write_cut.h"
+#include "flatten/sparse_cholesky.h"
 #include "io/landmarks.h"
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
@@ -412,6 +413,8 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   try {
+    // The executable owns its process: OpenBLAS's pool (pthreads build only) at one thread during factorisations.
+    liftmap::SparseCholesky::limit_openblas_pool(true);
     return run(argc, argv);
   } catch (const liftmap::UsageError& e) {
     std::cerr << "liftmap: " << e.what() << '\n';

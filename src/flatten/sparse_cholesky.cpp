@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <mutex>
 #include <numeric>
 #include <vector>
@@ -32,14 +33,15 @@ namespace {
 // triangular solves (three right-hand sides) are the same kind of small-block BLAS calls.
 // OpenBLAS built on pthreads (Debian's libopenblas0-pthread, which takes over libblas.so.3 from the serial build
 // whenever both are installed) has a thread pool of its own, which neither setting reaches: OpenBLAS's own call
-// sets it to one thread while SerialBlas lives. Measured with the pthreads build (profile_flatten, camel-cow's first
-// outer iteration, 35 factorisations in its first centring): 0.80 s of factorisation with its pool, 0.60 s with it set
-// to one thread, the same as the serial build.
-// One SerialBlas at a time in the process: Debian's serial OpenBLAS shares its work buffers between calling threads
-// without a lock (two maps in two threads gave different factors: sphere-ellipsoid maps differing by up to 0.97 in
-// a barycentric coordinate, none with the reference BLAS), and the settings saved and restored here are the
-// process's (max-active-levels, OpenBLAS's thread count), which two overlapping lifetimes would restore wrongly.
-// Concurrent maps therefore take turns in CHOLMOD's factorisations only.
+// sets it to one thread while SerialBlas lives, if the program asked for it (SparseCholesky::limit_openblas_pool:
+// the pool is the process's, so the library does not touch it on its own). Measured with the pthreads build
+// (profile_flatten, camel-cow's first outer iteration, 35 factorisations in its first centring): 0.80 s of
+// factorisation with its pool, 0.60 s with it set to one thread, the same as the serial build. One SerialBlas at a time
+// in the process: Debian's serial OpenBLAS shares its work buffers between calling threads without a lock (two maps in
+// two threads gave different factors: sphere-ellipsoid maps differing by up to 0.97 in a barycentric coordinate, none
+// with the reference BLAS), and the settings saved and restored here are the process's (max-active-levels, OpenBLAS's
+// thread count), which two overlapping lifetimes would restore wrongly. Concurrent maps therefore take turns in
+// CHOLMOD's factorisations only.
 class SerialBlas {
  public:
   SerialBlas();
@@ -77,12 +79,14 @@ const OpenBlasThreads& openblas_threads() {
   return calls;
 }
 
+std::atomic<bool> g_limit_openblas_pool{false};  // SparseCholesky::limit_openblas_pool
+
 SerialBlas::SerialBlas()
     : lock_(process_lock()), threads_(omp_get_max_threads()), levels_(omp_get_max_active_levels()) {
   omp_set_num_threads(1);
   omp_set_max_active_levels(0);
   g_serial_regions = true;
-  if (openblas_threads().set != nullptr) {
+  if (g_limit_openblas_pool.load() && openblas_threads().set != nullptr) {
     blas_threads_ = openblas_threads().get();
     if (blas_threads_ > 1) openblas_threads().set(1);
   }
@@ -432,6 +436,10 @@ SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
 }  // namespace
 
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+
+void SparseCholesky::limit_openblas_pool(bool on) { g_limit_openblas_pool.store(on); }
+
+bool SparseCholesky::openblas_pool_limited() { return g_limit_openblas_pool.load(); }
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;

@@ -40,6 +40,14 @@ class SparseCholesky {
     bool split = false;  ///< false: the solve runs on one thread (small or unbalanced tree)
     double group0 = 0, group1 = 0, top = 0;
   };
+  /// Whether factorize() sets OpenBLAS's own thread pool to one thread while CHOLMOD runs (and back after). Off by
+  /// default: the pool is the process's, so a program's other threads would see the change. It matters only for an
+  /// OpenBLAS built on pthreads (Debian's libopenblas0-pthread; the serial build has no pool), where CHOLMOD's many
+  /// small BLAS calls spend more on the pool's synchronisation than they gain (docs/performance.md). The liftmap
+  /// executable turns it on; a program that embeds the library decides for itself. Thread-safe.
+  static void limit_openblas_pool(bool on);
+  [[nodiscard]] static bool openblas_pool_limited();
+
   /// The split found by analyze().
   [[nodiscard]] SolveSplit solve_split() const;
   /// Per unknown (row of A): 0 or 1, the half of the split its column is eliminated in, or -1 if in the top. Two
