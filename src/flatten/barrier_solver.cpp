@@ -511,7 +511,7 @@ class BarrierSolver : SolverBase {
   // The start.
   void start_auxiliaries(const Eigen::MatrixXd& X0);
   void start_barrier_parameter();
-  [[nodiscard]] double centring_balance() const;
+  [[nodiscard]] double centring_balance(const std::array<double, 2>& S_start) const;
 
   // The outer loop.
   [[nodiscard]] Centring begin_centring() const;
@@ -603,9 +603,9 @@ void BarrierSolver::start_auxiliaries(const Eigen::MatrixXd& X0) {
 }
 
 // The t that best centres the start, -<grad f0, grad barrier> / |grad f0|^2 in the directions where f0 varies (the
-// e_j for p = 2, the T_m for p = inf); 0 if the barrier does not push against f0 there.
-double BarrierSolver::centring_balance() const {
-  const auto S_start = mesh_sums(s_, z_);
+// e_j for p = 2, the T_m for p = inf; S_start: the meshes' sums S_m at the start); 0 if the barrier does not push
+// against f0 there.
+double BarrierSolver::centring_balance(const std::array<double, 2>& S_start) const {
   double gf_gphi = 0, gf_gf = 0, barrier_t = 0;
 #pragma omp parallel for schedule(static) reduction(+ : gf_gphi, gf_gf, barrier_t) if (nf_ > kParallelFaces)
   for (int j = 0; j < nf_; ++j) {
@@ -635,7 +635,7 @@ void BarrierSolver::start_barrier_parameter() {
   const auto S_start = mesh_sums(s_, z_);
   const double start_objective_2 = std::sqrt(S_start[0]) + std::sqrt(S_start[1]);  // (10a) at the start, p = 2
   t_ = nu_ / (st_.p_inf ? f0() : start_objective_2);
-  const double balance = centring_balance();
+  const double balance = centring_balance(S_start);
   if (balance > 0) t_ = balance;
   if (st_.p_inf) return;
   t_ *= settings_.barrier.initial_barrier_factor;
@@ -653,7 +653,7 @@ SubproblemResult BarrierSolver::solve() {
     if (end_centring(c, stopped)) break;
     increase_barrier_parameter();
   }
-  return finish(z_.pos);
+  return result_at(z_.pos);
 }
 
 Centring BarrierSolver::begin_centring() const {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/seconds_since.h"
 #include "core/total_area.h"
 #include "flatten/barrier_solver.h"
 #include "flatten/boundary_loop.h"
@@ -351,7 +352,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       }
       break;
     }
-    it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    it.seconds = seconds_since(t0);
     const double previous = res.iterations.back().energy;
     if (it.energy > previous) {
       // Only an inexact subproblem solution can do this (the start is feasible with objective E(X), and E of

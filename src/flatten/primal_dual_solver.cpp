@@ -1033,7 +1033,7 @@ SubproblemResult PrimalDualSolver::solve() {
 SubproblemResult PrimalDualSolver::finish() {
   result_.gap_bound = best_gap_;
   const Eigen::VectorXd& pos = std::isfinite(best_gap_) ? best_pos_ : it_.pos;
-  return SolverBase::finish(pos);
+  return result_at(pos);
 }
 
 }  // namespace

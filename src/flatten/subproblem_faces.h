@@ -9,9 +9,9 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <vector>
 
+#include "core/seconds_since.h"
 #include "flatten/sparse_cholesky.h"
 #include "flatten/subproblem.h"
 
@@ -153,16 +153,11 @@ void subtract_corner_rows(const Setup& s, const FacePartition& p, const std::vec
 /// many orders of magnitude), by 1e-2 times the shift that worked last time (at least 1e-14), growing 100-fold per
 /// attempt (each a full factorisation). Any positive definite matrix still gives a descent direction, and the
 /// solvers' steps keep the iterate feasible. Leaves A shifted if it was.
-/// Once a solve has needed a shift, the unshifted attempt is skipped: the systems stay indefinite from then on, and the
-/// floor of 1e-14 relative is below the factorisation's own rounding. \param last_shift in: the last successful shift
-/// (0: none needed so far); out: this one's \return false if no shift below 1e3 makes it factorise (the limit of double
-/// precision).
+/// Once a solve has needed a shift, the unshifted attempt is skipped: the systems stay indefinite from then on, and
+/// the floor of 1e-14 relative is below the factorisation's own rounding.
+/// \param last_shift in: the last successful shift (0: none needed so far); out: this one's
+/// \return false if no shift below 1e3 makes it factorise (the limit of double precision).
 bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift);
-
-/// Wall time since `start`, seconds (the solvers' SubproblemStep timings).
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// What both solvers hold of one solve: its settings, the factorisation, the per-face data (checked against the
 /// start X0), the Newton system's assembly structure (the cache's, or its own), and the result being built.
@@ -187,7 +182,7 @@ class SolverBase {
     return pos;
   }
   /// result_ with X (#slots by 2) from the position vector pos.
-  SubproblemResult& finish(const Eigen::VectorXd& pos) {
+  SubproblemResult& result_at(const Eigen::VectorXd& pos) {
     result_.X.resize(n_slots_, 2);
     for (int i = 0; i < n_slots_; ++i) result_.X.row(i) = pos.segment<2>(2 * i).transpose();
     return result_;

@@ -14,6 +14,7 @@
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
+#include "core/seconds_since.h"
 #include "core/total_area.h"
 #include "flatten/distortion.h"
 #include "flatten/flattening_checks.h"
@@ -24,8 +25,6 @@ namespace liftmap {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// The longest stretch without a progress line inside a convex subproblem.
 constexpr double kProgressSeconds = 3;
