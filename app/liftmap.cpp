@@ -139,6 +139,7 @@ struct PairJob {
   bool no_normalize = false, quiet = false, fix_orientation = false;
   double tolerance = 1e-3;
   int max_iterations = 10, threads = 0, samples = 2;
+  int start_relaxation = liftmap::JointStartRelaxationOptions{}.newton.max_iterations;
 };
 
 void add_pair_options(CLI::App* cmd, PairJob& job) {
@@ -192,6 +193,7 @@ liftmap::MapOptions map_options(const PairJob& job) {
   o.flatten.normalize_area = !job.no_normalize;
   o.flatten.relative_tolerance = job.tolerance;
   o.flatten.max_iterations = job.max_iterations;
+  o.flatten.joint_start.newton.max_iterations = job.start_relaxation;
   o.distortion_samples_per_edge = job.samples;
   o.name_a = job.path_a;
   o.name_b = job.path_b;
@@ -348,6 +350,10 @@ int run(int argc, char** argv) {
       ->check(kFinitePositive)
       ->capture_default_str();
   map->add_option("--max-iterations", map_job.max_iterations, "Outer iterations of the flattening")
+      ->check(CLI::Range(0, liftmap::MapOptionLimits::kMaxOuterIterations))
+      ->capture_default_str();
+  map->add_option("--start-relaxation", map_job.start_relaxation,
+                  "Newton steps at most of the start's joint relaxation, common boundary free (0: off)")
       ->check(CLI::Range(0, liftmap::MapOptionLimits::kMaxOuterIterations))
       ->capture_default_str();
   map->add_option("--samples", map_job.samples, "Distortion of f, g: n^2 samples per face")

@@ -8,7 +8,8 @@ For every configuration it runs `liftmap map`, reads report.json and checks:
   1000; the whole map under 60 s; the first outer iteration at most 3 times the median of the others.
 It prints a markdown table (worst first by the first check that fails) and exits 1 if any configuration fails.
 
-usage: map_sweep.py BUILD_DIR OUT_DIR [--limit N] [--table FILE] [--budget SECONDS]
+usage: map_sweep.py BUILD_DIR OUT_DIR [--limit N] [--table FILE] [--budget SECONDS] [--map-args "ARGS"]
+--map-args adds options to every `liftmap map` (e.g. "--start-relaxation 0" for the start without its relaxation).
 With --budget, no configuration starts once the budget is spent; those not run are listed as such.
 """
 import argparse
@@ -101,10 +102,10 @@ def configurations(out):
     return configs
 
 
-def run(liftmap, name, a, b, lm, out):
+def run(liftmap, name, a, b, lm, out, extra=()):
     folder = os.path.join(out, "maps", name.replace(" ", "_").replace("/", "").replace("=", ""))
     t0 = time.monotonic()
-    p = subprocess.run([liftmap, "map", a, b, "-l", lm, "-o", folder, "--quiet"], capture_output=True, text=True,
+    p = subprocess.run([liftmap, "map", a, b, "-l", lm, "-o", folder, "--quiet", *extra], capture_output=True, text=True,
                        timeout=900)
     row = {"name": name, "exit": p.returncode, "seconds": time.monotonic() - t0, "error": p.stderr.strip()[-200:]}
     if p.returncode != 0:
@@ -117,6 +118,8 @@ def run(liftmap, name, a, b, lm, out):
     row["final_max_distortion"] = its[-1]["max_distortion"]
     row["final_energy"] = its[-1]["energy"]
     row["outer"] = len(its) - 1
+    row["start_s"] = its[0].get("seconds", 0)
+    row["relaxation_steps"] = report["flatten"].get("joint_start_relaxation", {}).get("steps", 0)
     secs = [i["seconds"] for i in its[1:]]
     row["first_s"] = secs[0] if secs else 0
     row["median_s"] = statistics.median(secs[1:]) if len(secs) > 1 else float("nan")
@@ -140,14 +143,15 @@ def failures(row):
 
 
 def table(rows):
-    lines = ["| configuration | exit | map s | start: smallest face / mean | start max dist. | drift A, B | outer its "
-             "| first it. s / median | final max dist. | final energy | fails |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| configuration | exit | map s | start s (relaxation steps) | start: smallest face / mean "
+             "| start max dist. | drift A, B | outer its | first it. s / median | final max dist. | final energy | fails |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         if r["exit"] != 0:
-            lines.append(f"| {r['name']} | {r['exit']} | {r['seconds']:.1f} | | | | | | | | {r['error']} |")
+            lines.append(f"| {r['name']} | {r['exit']} | {r['seconds']:.1f} | | | | | | | | | {r['error']} |")
             continue
-        lines.append(f"| {r['name']} | 0 | {r['seconds']:.1f} | {r['start_min_area']:.2g} | "
+        lines.append(f"| {r['name']} | 0 | {r['seconds']:.1f} | {r['start_s']:.2f} ({r['relaxation_steps']}) | "
+                     f"{r['start_min_area']:.2g} | "
                      f"{r['start_max_distortion']:.3g} | {r['drift'][0]:g}, {r['drift'][1]:g} | {r['outer']} | "
                      f"{r['first_s']:.2f} / {r['median_s']:.2f} | {r['final_max_distortion']:.3g} | "
                      f"{r['final_energy']:.5g} | {', '.join(failures(r))} |")
@@ -161,6 +165,7 @@ def main():
     ap.add_argument("--limit", type=int, default=0, help="run only the first N configurations")
     ap.add_argument("--table", help="also write the table to this file")
     ap.add_argument("--budget", type=float, default=0, help="seconds after which no configuration starts (0: none)")
+    ap.add_argument("--map-args", default="", help="options added to every liftmap map")
     args = ap.parse_args()
     liftmap = os.path.join(args.build, "app", "liftmap")
     configs = configurations(args.out)
@@ -172,7 +177,7 @@ def main():
         if args.budget and time.monotonic() - started > args.budget:
             skipped.append(c[0])
             continue
-        row = run(liftmap, *c, args.out)
+        row = run(liftmap, *c, args.out, args.map_args.split())
         rows.append(row)
         print(f"[{i + 1}/{len(configs)}] {row['name']}: {row['seconds']:.1f} s, "
               f"{', '.join(failures(row)) or 'ok'}", flush=True)

@@ -71,7 +71,7 @@ Map map_arrays(const py::handle& VA, const py::handle& FA, const py::handle& VB,
                const py::handle& landmarks, const py::object& p, const std::string& h, bool normalize, double tolerance,
                int max_iterations, const std::string& solver, const std::string& tree, int samples,
                std::optional<int> threads, bool fix_orientation, const py::object& progress, const std::string& name_a,
-               const std::string& name_b, bool accept_unverified) {
+               const std::string& name_b, bool accept_unverified, int start_relaxation) {
   const MapKeywords k{{norm_name(p), h, solver, tree},
                       normalize,
                       tolerance,
@@ -82,7 +82,8 @@ Map map_arrays(const py::handle& VA, const py::handle& FA, const py::handle& VB,
                       progress,
                       name_a,
                       name_b,
-                      accept_unverified};
+                      accept_unverified,
+                      start_relaxation};
   return compute_map(VA, FA, VB, FB, landmarks, k);
 }
 
@@ -103,6 +104,8 @@ Options (the CLI's, README "Command line"):
   max_iterations: outer iterations of the flattening, 0 to 10000. Default 10.
   solver: "auto" (barrier for p = 2, primal-dual for p = inf), "barrier" or "primal-dual". Default "auto".
   tree: cut tree, "mst" (paper) or "path" (through all landmarks). Default "mst".
+  start_relaxation: Newton steps at most of the start's joint relaxation, common boundary free, 0 to 10000 (0:
+    the paper's start on a circle). Default 0; 100: see the README.
   samples: n, the n^2 samples per face at which the distortion of f and g is measured, 1 to 10. Default 2.
   threads: threads of the per-face work, 1 to 4 per hardware thread; None: the calling thread's OpenMP
     setting. Set for this call on its own thread only.
@@ -222,5 +225,6 @@ Raises InvalidInputError only for an array of the wrong shape or dtype.)");
   m.def("map", &map_arrays, "VA"_a, "FA"_a, "VB"_a, "FB"_a, "landmarks"_a, py::kw_only(), "p"_a = 2, "h"_a = "eq3",
         "normalize"_a = true, "tolerance"_a = 1e-3, "max_iterations"_a = 10, "solver"_a = "auto", "tree"_a = "mst",
         "samples"_a = 2, "threads"_a = py::none(), "fix_orientation"_a = false, "progress"_a = py::none(),
-        "name_a"_a = "mesh A", "name_b"_a = "mesh B", "accept_unverified"_a = false, kMapDoc);
+        "name_a"_a = "mesh A", "name_b"_a = "mesh B", "accept_unverified"_a = false,
+        "start_relaxation"_a = liftmap::JointStartRelaxationOptions{}.newton.max_iterations, kMapDoc);
 }

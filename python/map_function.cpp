@@ -65,10 +65,12 @@ MapOptions options_from(const MapKeywords& k) {
   }
   require_range("max_iterations", k.max_iterations, 0, MapOptionLimits::kMaxOuterIterations);
   require_range("samples", k.samples, 1, MapOptionLimits::kMaxSamplesPerEdge);
+  require_range("start_relaxation", k.start_relaxation, 0, MapOptionLimits::kMaxOuterIterations);
   if (k.threads) require_range("threads", *k.threads, 1, MapOptionLimits::max_threads());
   o.flatten.normalize_area = k.normalize;
   o.flatten.relative_tolerance = k.tolerance;
   o.flatten.max_iterations = k.max_iterations;
+  o.flatten.joint_start.newton.max_iterations = k.start_relaxation;
   o.distortion_samples_per_edge = k.samples;
   o.threads = k.threads.value_or(0);
   o.name_a = k.name_a;

@@ -23,6 +23,7 @@ struct MapKeywords {
   pybind11::object progress;  ///< None or callable(stage: str, message: str)
   std::string name_a = "mesh A", name_b = "mesh B";
   bool accept_unverified = false;
+  int start_relaxation = JointStartRelaxationOptions{}.newton.max_iterations;
 };
 
 /// The CLI's name of an energy norm given as 2, 2.0, "2", inf or "inf".

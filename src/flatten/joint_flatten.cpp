@@ -14,6 +14,7 @@
 #include "flatten/boundary_loop.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
+#include "flatten/joint_start_relaxation.h"
 #include "flatten/primal_dual_solver.h"
 #include "flatten/subproblem_faces.h"
 #include "flatten/symmetric_dirichlet.h"
@@ -208,6 +209,12 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
       g.F.row(2 * i + 1) << i, gv, b;
     }
     place_ghost_vertices(sp, jp.X0);
+    if (options.joint_start.newton.max_iterations > 0) {
+      SymmetricDirichletResult r = relax_joint_start(sp, jp.X0, options.joint_start);
+      jp.joint_start = {.steps = r.iterations, .energy_before = r.energy_start, .energy_after = r.energy};
+      jp.X0 = std::move(r.U);
+      place_ghost_vertices(sp, jp.X0);
+    }
   }
   set_rotations(sp, jp.X0);
   return jp;
@@ -283,6 +290,7 @@ void record_iterate(const JointFlattenProblem& jp, const std::array<const Mesh*,
 }  // namespace
 
 JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& n, const JointFlattenOptions& options) {
+  const auto start_time = std::chrono::steady_clock::now();
   JointFlattenProblem jp = make_joint_flatten_problem(m, n, options);
   ConvexSubproblem& sp = jp.subproblem;
   JointFlattenResult res;
@@ -290,12 +298,14 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
   res.scale_n = jp.scale_n;
   res.start = jp.start;
   res.start_steps = jp.start_steps;
+  res.joint_start = jp.joint_start;
   const std::array<const Mesh*, 2> meshes{m.mesh, n.mesh};
 
   Eigen::MatrixXd X = jp.X0;
   {
     JointFlattenIteration it;
     record_iterate(jp, meshes, X, options, res, it);
+    it.seconds = seconds_since(start_time);
     res.iterations.push_back(it);
     if (options.on_iteration) options.on_iteration(0, it);
   }

@@ -10,6 +10,7 @@
 #include "core/mesh.h"
 #include "flatten/distortion.h"
 #include "flatten/flattening_start.h"
+#include "flatten/joint_start_relaxation.h"
 #include "flatten/subproblem.h"
 #include "flatten/symmetric_dirichlet.h"
 
@@ -70,6 +71,9 @@ struct JointFlattenOptions {
   /// the symmetric Dirichlet energy, boundary fixed, never flipping a face (minimize_symmetric_dirichlet);
   /// max_iterations 0: off.
   SymmetricDirichletOptions start_optimization;
+  /// Then both disks are relaxed together, their common boundary free (relax_joint_start; needs ghost_faces);
+  /// joint_start.newton.max_iterations 0: off.
+  JointStartRelaxationOptions joint_start;
   /// Called with (index, statistics) for the start (index 0) and after every accepted outer iteration, as
   /// they happen (progress reporting); empty: not called.
   std::function<void(size_t, const JointFlattenIteration&)> on_iteration = nullptr;
@@ -83,6 +87,13 @@ struct JointFlattenOptions {
 [[nodiscard]] double start_gap(const JointFlattenOptions& options,
                                const std::vector<JointFlattenIteration>& iterations);
 
+/// What the joint relaxation of the start did (relax_joint_start).
+struct JointStartRelaxation {
+  int steps = 0;             ///< projected Newton steps taken (0: off, or nothing gained)
+  double energy_before = 0;  ///< its energy E before and after (0, 0 if off)
+  double energy_after = 0;
+};
+
 /// Statistics of one iterate (index 0: the Tutte start).
 struct JointFlattenIteration {
   double energy = 0;  ///< E_p(Phi) + E_p(Psi), eq. (8) with the chosen h, p (normalised meshes)
@@ -95,7 +106,7 @@ struct JointFlattenIteration {
   bool subproblem_converged = false;  ///< the solver certified its gap bound (SubproblemResult::converged)
   int stalled_centrings = 0;          ///< SubproblemResult::stalled_centrings
   std::optional<SubproblemStatus> subproblem_status;  ///< why the subproblem's solve ended; none for the start
-  double seconds = 0;  ///< wall time of this outer iteration (rotations + solve + checks)
+  double seconds = 0;  ///< wall time of this outer iteration (rotations + solve + checks); the start: of the start
 };
 
 /// The relative gap joint_flatten solves its next subproblem to, given the iterates so far (gap_fraction).
@@ -113,11 +124,13 @@ struct JointFlattenResult {
   double scale_m = 1, scale_n = 1;  ///< factors applied to the disks' coordinates internally
   std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start: drift, energy, smallest face area
   std::array<int, 2> start_steps{};               ///< Newton steps of each disk's start_optimization
+  JointStartRelaxation joint_start;               ///< the joint relaxation of the start
 };
 
-/// Computes liftable flattenings Phi, Psi of two disks with a common boundary (Algorithm 2): mean-value Tutte
-/// start on the unit circle (corresponding boundary vertices at the same point, spaced by the averaged
-/// boundary arc length), then convex subproblems (10) with rotations from the polar decompositions.
+/// Computes liftable flattenings Phi, Psi of two disks with a common boundary (Algorithm 2): a convex-combination
+/// start on the unit circle (corresponding boundary vertices at the same point, spaced by the averaged boundary arc
+/// length; flattening_start), relaxed jointly with the common boundary free (relax_joint_start), then convex
+/// subproblems (10) with rotations from the polar decompositions.
 /// Every iterate has all faces positively oriented, interior angle sums 2 pi, and (with ghost faces) boundary
 /// angle sums below 2 pi; Phi and Psi agree exactly on corresponding boundary vertices. Outputs are in the first
 /// disk's input units (positions divided by scale_m), so that the common boundary stays common.
@@ -136,6 +149,7 @@ struct JointFlattenProblem {
   std::array<Eigen::MatrixXi, 2> F;
   std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start (flattening_start)
   std::array<int, 2> start_steps{};               ///< Newton steps of each disk's start_optimization
+  JointStartRelaxation joint_start;               ///< the joint relaxation of the start
   double scale_m = 1, scale_n = 1;
 };
 

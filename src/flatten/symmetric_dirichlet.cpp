@@ -2,6 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -17,6 +19,10 @@ using Vec4 = Eigen::Vector4d;
 using Mat4 = Eigen::Matrix4d;
 using Mat46 = Eigen::Matrix<double, 4, 6>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+/// Below this many faces the per-face loops run serially.
+constexpr Eigen::Index kParallelFaces = 4000;
 
 /// d(a11, a12, a21, a22) / d(u0, v0, u1, v1, u2, v2) of one face (JacobianOperator's convention).
 Mat46 jacobian_map(const Eigen::Matrix<double, 1, 6>& g) {
@@ -30,9 +36,29 @@ Mat46 jacobian_map(const Eigen::Matrix<double, 1, 6>& g) {
   return D;
 }
 
-Vec6 corners(const Eigen::MatrixXi& F, const Eigen::MatrixXd& U, Eigen::Index f) {
+/// One face of E: its Jacobian map, its factor (the term's weight times its area) and the rows of X of its corners.
+struct Face {
+  Mat46 D;
+  double w = 0;
+  std::array<int, 3> row{};
+};
+
+/// The faces of every term, in term order.
+std::vector<Face> gather_faces(const std::vector<SymmetricDirichletTerm>& terms) {
+  std::vector<Face> faces;
+  for (const SymmetricDirichletTerm& t : terms) {
+    for (Eigen::Index f = 0; f < t.F->rows(); ++f) {
+      Face face{.D = jacobian_map(t.jacobian->G.row(f)), .w = t.weight * t.jacobian->area(f)};
+      for (int k = 0; k < 3; ++k) face.row[static_cast<size_t>(k)] = (*t.slot)[static_cast<size_t>((*t.F)(f, k))];
+      faces.push_back(face);
+    }
+  }
+  return faces;
+}
+
+Vec6 corners(const Face& face, const Eigen::MatrixXd& X) {
   Vec6 x;
-  for (int k = 0; k < 3; ++k) x.segment<2>(2 * k) = U.row(F(f, k)).transpose();
+  for (int k = 0; k < 3; ++k) x.segment<2>(2 * k) = X.row(face.row[static_cast<size_t>(k)]).transpose();
   return x;
 }
 
@@ -45,12 +71,18 @@ double face_energy(const Vec4& j) {
   return j.squaredNorm() * (1 + 1 / (d * d)) - 4;
 }
 
-double energy(const JacobianOperator& op, const Eigen::MatrixXi& F, const Eigen::MatrixXd& U) {
-  double e = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    e += op.area(f) * face_energy(jacobian_map(op.G.row(f)) * corners(F, U, f));
+/// E(X), +inf at a flipped face; the faces' terms are summed in face order, whatever the threads.
+double energy(const std::vector<Face>& faces, const Eigen::MatrixXd& X) {
+  const auto nf = static_cast<Eigen::Index>(faces.size());
+  Eigen::VectorXd e(nf);
+#pragma omp parallel for schedule(static) if (nf > kParallelFaces)
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const Face& face = faces[static_cast<size_t>(f)];
+    e(f) = face.w * face_energy(face.D * corners(face, X));
   }
-  return e;
+  double sum = 0;
+  for (Eigen::Index f = 0; f < nf; ++f) sum += e(f);
+  return sum;
 }
 
 /// Gradient and projected Hessian of face_energy in j.
@@ -68,98 +100,177 @@ void face_derivatives(const Vec4& j, Vec4& grad, Mat4& hess) {
   hess = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0).asDiagonal() * eig.eigenvectors().transpose();
 }
 
-/// The largest a in (0, 1] such that det(J + t dJ) > 0 for all t in [0, a] on every face, times 0.8 if < 1/0.8.
-double flip_free_step(const JacobianOperator& op, const Eigen::MatrixXi& F, const Eigen::MatrixXd& U,
-                      const Eigen::MatrixXd& step_u) {
-  double a = 1 / 0.8;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Mat46 D = jacobian_map(op.G.row(f));
-    const Vec4 j = D * corners(F, U, f), dj = D * corners(F, step_u, f);
-    // det(j + t dj) = c0 + c1 t + c2 t^2
-    const double c0 = det(j), c2 = det(dj);
-    const double c1 = j(0) * dj(3) + dj(0) * j(3) - j(1) * dj(2) - dj(1) * j(2);
-    double root = std::numeric_limits<double>::infinity();
-    if (std::abs(c2) < 1e-300) {
-      if (c1 < 0) root = -c0 / c1;
-    } else {
-      const double disc = c1 * c1 - 4 * c2 * c0;
-      if (disc >= 0) {
-        const double s = std::sqrt(disc);
-        for (const double r : {(-c1 - s) / (2 * c2), (-c1 + s) / (2 * c2)}) {
-          if (r > 0) root = std::min(root, r);
-        }
+/// The smallest t > 0 with det(j + t dj) = 0, or +inf.
+double flip_root(const Vec4& j, const Vec4& dj) {
+  // det(j + t dj) = c0 + c1 t + c2 t^2
+  const double c0 = det(j), c2 = det(dj);
+  const double c1 = j(0) * dj(3) + dj(0) * j(3) - j(1) * dj(2) - dj(1) * j(2);
+  double root = std::numeric_limits<double>::infinity();
+  if (std::abs(c2) < 1e-300) {
+    if (c1 < 0) root = -c0 / c1;
+  } else {
+    const double disc = c1 * c1 - 4 * c2 * c0;
+    if (disc >= 0) {
+      const double s = std::sqrt(disc);
+      for (const double r : {(-c1 - s) / (2 * c2), (-c1 + s) / (2 * c2)}) {
+        if (r > 0) root = std::min(root, r);
       }
     }
-    a = std::min(a, root);
+  }
+  return root;
+}
+
+/// 0.8 times the largest a such that no face flips along X + t dX for t in [0, a] (at most 1 / 0.8).
+double flip_free_step(const std::vector<Face>& faces, const Eigen::MatrixXd& X, const Eigen::MatrixXd& dX) {
+  const auto nf = static_cast<Eigen::Index>(faces.size());
+  double a = 1 / 0.8;
+#pragma omp parallel for schedule(static) reduction(min : a) if (nf > kParallelFaces)
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const Face& face = faces[static_cast<size_t>(f)];
+    a = std::min(a, flip_root(face.D * corners(face, X), face.D * corners(face, dX)));
   }
   return 0.8 * a;
 }
 
-}  // namespace
+/// The projected Newton system's lower triangle over the free coordinates (2 per slot with dof >= 0), and where
+/// each face's entries go: built once, its values refilled every step.
+struct NewtonPattern {
+  Eigen::SparseMatrix<double> H;
+  std::vector<std::array<int, 6>> var;     ///< per face, the unknown of each corner coordinate (-1: fixed)
+  std::vector<std::array<int, 36>> index;  ///< per face, entry (a, b) of its 6 by 6 block -> value of H, -1: none
+};
 
-SymmetricDirichletResult minimize_symmetric_dirichlet(const JacobianOperator& op, const Eigen::MatrixXi& F,
-                                                      const std::vector<char>& fixed, const Eigen::MatrixXd& U0,
-                                                      const SymmetricDirichletOptions& options) {
-  const auto nv = static_cast<Eigen::Index>(fixed.size());
-  if (U0.rows() != nv || U0.cols() != 2 || op.G.rows() != F.rows() || op.area.size() != F.rows()) {
-    throw InvalidInputError("minimize_symmetric_dirichlet: sizes disagree");
+NewtonPattern make_newton_pattern(const std::vector<Face>& faces, const std::vector<int>& dof, int n) {
+  NewtonPattern p;
+  p.var.resize(faces.size());
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (int a = 0; a < 6; ++a) {
+      const int r = dof[static_cast<size_t>(faces[f].row[static_cast<size_t>(a / 2)])];
+      p.var[f][static_cast<size_t>(a)] = r < 0 ? -1 : 2 * r + a % 2;
+    }
+    for (const int ra : p.var[f]) {
+      for (const int rb : p.var[f]) {
+        if (ra >= 0 && rb >= 0 && rb <= ra) triplets.emplace_back(ra, rb, 0.0);
+      }
+    }
   }
-  SymmetricDirichletResult res;
-  res.U = U0;
-  res.energy_start = res.energy = energy(op, F, U0);
-  if (!std::isfinite(res.energy)) {
-    throw InvalidInputError("minimize_symmetric_dirichlet: a face of the start is flipped or degenerate");
+  for (int i = 0; i < 2 * n; ++i) triplets.emplace_back(i, i, 0.0);
+  p.H.resize(2 * n, 2 * n);
+  p.H.setFromTriplets(triplets.begin(), triplets.end());
+  p.H.makeCompressed();
+  p.index.resize(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (int a = 0; a < 6; ++a) {
+      for (int b = 0; b < 6; ++b) {
+        const int ra = p.var[f][static_cast<size_t>(a)], rb = p.var[f][static_cast<size_t>(b)];
+        int& at = p.index[f][static_cast<size_t>(6 * a + b)];
+        at = -1;
+        if (ra < 0 || rb < 0 || rb > ra) continue;
+        const int* begin = p.H.innerIndexPtr() + p.H.outerIndexPtr()[rb];
+        const int* end = p.H.innerIndexPtr() + p.H.outerIndexPtr()[rb + 1];
+        at = static_cast<int>(std::lower_bound(begin, end, ra) - p.H.innerIndexPtr());
+      }
+    }
   }
-  std::vector<int> dof(static_cast<size_t>(nv), -1);
-  int n = 0;
-  for (Eigen::Index v = 0; v < nv; ++v) {
-    if (!fixed[static_cast<size_t>(v)]) dof[static_cast<size_t>(v)] = n++;
+  return p;
+}
+
+/// Fills p.H with the projected Hessian of E at X (plus a tiny multiple of its diagonal, which keeps the
+/// semidefinite sum definite) and g with its gradient, over the free coordinates.
+void newton_system(const std::vector<Face>& faces, const Eigen::MatrixXd& X, NewtonPattern& p, Eigen::VectorXd& g) {
+  const auto nf = static_cast<Eigen::Index>(faces.size());
+  std::vector<Vec6> gx(faces.size());
+  std::vector<Mat6> hx(faces.size());
+#pragma omp parallel for schedule(static) if (nf > kParallelFaces)
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const Face& face = faces[static_cast<size_t>(f)];
+    Vec4 gj;
+    Mat4 hj;
+    face_derivatives(face.D * corners(face, X), gj, hj);
+    gx[static_cast<size_t>(f)] = face.w * face.D.transpose() * gj;
+    hx[static_cast<size_t>(f)] = face.w * face.D.transpose() * hj * face.D;
   }
-  if (n == 0) return res;
-  SparseCholesky cholesky;
-  for (int iter = 0; iter < options.max_iterations; ++iter) {
-    // Assemble the projected Newton system H dx = -g over the free coordinates (2 per free vertex).
-    std::vector<Eigen::Triplet<double>> triplets;
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      const Mat46 D = jacobian_map(op.G.row(f));
-      Vec4 gj;
-      Mat4 hj;
-      face_derivatives(D * corners(F, res.U, f), gj, hj);
-      const Vec6 gx = op.area(f) * D.transpose() * gj;
-      const Eigen::Matrix<double, 6, 6> hx = op.area(f) * D.transpose() * hj * D;
-      for (int a = 0; a < 6; ++a) {
-        const int ra = dof[static_cast<size_t>(F(f, a / 2))];
-        if (ra < 0) continue;
-        g(2 * ra + a % 2) += gx(a);
-        for (int b = 0; b < 6; ++b) {
-          const int rb = dof[static_cast<size_t>(F(f, b / 2))];
-          if (rb >= 0 && 2 * rb + b % 2 <= 2 * ra + a % 2)
-            triplets.emplace_back(2 * ra + a % 2, 2 * rb + b % 2, hx(a, b));
+  double* values = p.H.valuePtr();
+  std::fill(values, values + p.H.nonZeros(), 0.0);
+  g = Eigen::VectorXd::Zero(p.H.rows());
+  for (size_t f = 0; f < faces.size(); ++f) {  // in face order: the sums do not depend on the threads
+    for (int a = 0; a < 6; ++a) {
+      const int ra = p.var[f][static_cast<size_t>(a)];
+      if (ra < 0) continue;
+      g(ra) += gx[f](a);
+      for (int b = 0; b < 6; ++b) {
+        const int at = p.index[f][static_cast<size_t>(6 * a + b)];
+        if (at >= 0) values[at] += hx[f](a, b);
+      }
+    }
+  }
+  for (Eigen::Index i = 0; i < p.H.rows(); ++i) p.H.coeffRef(i, i) += 1e-12 * (1 + std::abs(p.H.coeff(i, i)));
+}
+
+void check_terms(const std::vector<SymmetricDirichletTerm>& terms, Eigen::Index n_slots) {
+  for (const SymmetricDirichletTerm& t : terms) {
+    if (t.jacobian == nullptr || t.F == nullptr || t.slot == nullptr || t.jacobian->G.rows() != t.F->rows() ||
+        t.jacobian->area.size() != t.F->rows() || !(t.weight > 0)) {
+      throw InvalidInputError("minimize_symmetric_dirichlet: a term's sizes disagree or its weight is not positive");
+    }
+    for (Eigen::Index f = 0; f < t.F->rows(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const int v = (*t.F)(f, k);
+        const bool ok = v >= 0 && static_cast<size_t>(v) < t.slot->size() && (*t.slot)[static_cast<size_t>(v)] >= 0 &&
+                        (*t.slot)[static_cast<size_t>(v)] < n_slots;
+        if (!ok) {
+          throw InvalidInputError("minimize_symmetric_dirichlet: face " + std::to_string(f) +
+                                  " has a corner without a slot");
         }
       }
     }
-    Eigen::SparseMatrix<double> H(2 * n, 2 * n);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    // A tiny multiple of the diagonal keeps the projected (semidefinite) Hessian definite.
-    for (int i = 0; i < 2 * n; ++i) H.coeffRef(i, i) += 1e-12 * (1 + std::abs(H.coeff(i, i)));
-    if (!cholesky.analyzed()) cholesky.analyze(H);
-    if (!cholesky.factorize(H)) break;
+  }
+}
+
+}  // namespace
+
+SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<SymmetricDirichletTerm>& terms,
+                                                      const std::vector<char>& fixed, const Eigen::MatrixXd& X0,
+                                                      const SymmetricDirichletOptions& options) {
+  const auto ns = static_cast<Eigen::Index>(fixed.size());
+  if (X0.rows() != ns || X0.cols() != 2) throw InvalidInputError("minimize_symmetric_dirichlet: sizes disagree");
+  check_terms(terms, ns);
+  const std::vector<Face> faces = gather_faces(terms);
+  SymmetricDirichletResult res;
+  res.U = X0;
+  res.energy_start = res.energy = energy(faces, X0);
+  if (!std::isfinite(res.energy)) {
+    throw InvalidInputError("minimize_symmetric_dirichlet: a face of the start is flipped or degenerate");
+  }
+  std::vector<int> dof(static_cast<size_t>(ns), -1);
+  int n = 0;
+  for (Eigen::Index v = 0; v < ns; ++v) {
+    if (!fixed[static_cast<size_t>(v)]) dof[static_cast<size_t>(v)] = n++;
+  }
+  if (n == 0 || options.max_iterations <= 0) return res;
+  NewtonPattern pattern = make_newton_pattern(faces, dof, n);
+  SparseCholesky cholesky;
+  cholesky.analyze(pattern.H);
+  for (int iter = 0; iter < options.max_iterations; ++iter) {
+    Eigen::VectorXd g;
+    newton_system(faces, res.U, pattern, g);
+    if (!cholesky.factorize(pattern.H)) break;
     const Eigen::VectorXd dx = cholesky.solve(-g);
-    Eigen::MatrixXd step_u = Eigen::MatrixXd::Zero(nv, 2);
-    for (Eigen::Index v = 0; v < nv; ++v) {
+    Eigen::MatrixXd dX = Eigen::MatrixXd::Zero(ns, 2);
+    for (Eigen::Index v = 0; v < ns; ++v) {
       const int r = dof[static_cast<size_t>(v)];
-      if (r >= 0) step_u.row(v) << dx(2 * r), dx(2 * r + 1);
+      if (r >= 0) dX.row(v) << dx(2 * r), dx(2 * r + 1);
     }
     // Flip-free, then Armijo.
     const double slope = g.dot(dx);
     if (!(slope < 0)) break;
-    double step = std::min(1.0, flip_free_step(op, F, res.U, step_u));
+    double step = std::min(1.0, flip_free_step(faces, res.U, dX));
     double e = std::numeric_limits<double>::infinity();
     Eigen::MatrixXd trial;
     for (int halvings = 0; halvings < 40; ++halvings, step *= 0.5) {
-      trial = res.U + step * step_u;
-      e = energy(op, F, trial);
+      trial = res.U + step * dX;
+      e = energy(faces, trial);
       if (e <= res.energy + 1e-4 * step * slope) break;
     }
     if (!(e < res.energy)) break;
@@ -170,6 +281,19 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const JacobianOperator& op
     if (before - e < options.relative_decrease * before) break;
   }
   return res;
+}
+
+SymmetricDirichletResult minimize_symmetric_dirichlet(const JacobianOperator& op, const Eigen::MatrixXi& F,
+                                                      const std::vector<char>& fixed, const Eigen::MatrixXd& U0,
+                                                      const SymmetricDirichletOptions& options) {
+  const auto nv = static_cast<Eigen::Index>(fixed.size());
+  if (U0.rows() != nv || U0.cols() != 2 || op.G.rows() != F.rows() || op.area.size() != F.rows()) {
+    throw InvalidInputError("minimize_symmetric_dirichlet: sizes disagree");
+  }
+  std::vector<int> slot(static_cast<size_t>(nv));
+  for (Eigen::Index v = 0; v < nv; ++v) slot[static_cast<size_t>(v)] = static_cast<int>(v);
+  return minimize_symmetric_dirichlet({SymmetricDirichletTerm{.jacobian = &op, .F = &F, .slot = &slot}}, fixed, U0,
+                                      options);
 }
 
 }  // namespace liftmap

@@ -17,11 +17,29 @@ struct SymmetricDirichletOptions {
 
 /// Result of minimize_symmetric_dirichlet.
 struct SymmetricDirichletResult {
-  Eigen::MatrixXd U;        ///< #V by 2 positions, every face positively oriented, fixed vertices unchanged
+  Eigen::MatrixXd U;        ///< #V (or #slots) by 2 positions, every face positively oriented, fixed ones unchanged
   double energy_start = 0;  ///< E at the given positions
   double energy = 0;        ///< E at U
   int iterations = 0;       ///< Newton steps taken
 };
+
+/// One mesh's part of a symmetric Dirichlet energy over shared unknowns X (#slots by 2): several meshes whose
+/// vertices share slots (the joint flattening's common boundary) are lowered together.
+struct SymmetricDirichletTerm {
+  const JacobianOperator* jacobian = nullptr;  ///< the mesh's Jacobian operator (its rest shape)
+  const Eigen::MatrixXi* F = nullptr;          ///< #F by 3 vertex indices
+  const std::vector<int>* slot = nullptr;      ///< #V: the row of X holding the vertex's position
+  double weight = 1;                           ///< the term's factor in E (positive)
+};
+
+/// Lowers E(X) = sum over the terms of weight * sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4) as the single-mesh
+/// overload below does, over the rows of X whose fixed flag is 0 (the others do not move).
+/// \param fixed #slots flags; \param X0 #slots by 2 positions with every face of every term positively oriented
+/// 	hrow InvalidInputError if sizes disagree, a corner has no slot, a weight is not positive or a face of X0 is not
+///        positively oriented.
+SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<SymmetricDirichletTerm>& terms,
+                                                      const std::vector<char>& fixed, const Eigen::MatrixXd& X0,
+                                                      const SymmetricDirichletOptions& options = {});
 
 /// Lowers E(U) = sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4), J_f the Jacobian of face f (JacobianOperator), by
 /// projected Newton (every face's 4 by 4 Hessian in J clamped to its positive semidefinite part, Teran et al.

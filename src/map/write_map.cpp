@@ -69,6 +69,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"start_gap_fraction", options.flatten.start_gap_fraction},
       {"isotropic_anticonformal_curvature", options.flatten.solver.barrier.isotropic_anticonformal_curvature},
       {"max_iterations", options.flatten.max_iterations},
+      {"start_relaxation_steps", options.flatten.joint_start.newton.max_iterations},
       {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},
       {"remesh", options.cut.remesh},
   };
@@ -105,10 +106,14 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                      {"min_area_ratio_before_optimization", s.min_area_ratio},
                      {"optimization_steps", map.flattening.start_steps[k]}});
   }
-  j["flatten"] = {{"start", start},
-                  {"iterations", it},
-                  {"converged", map.flattening.converged},
-                  {"stop_reason", map.flattening.stop_reason}};
+  const JointStartRelaxation& relax = map.flattening.joint_start;
+  j["flatten"] = {
+      {"start", start},
+      {"joint_start_relaxation",
+       {{"steps", relax.steps}, {"energy_before", relax.energy_before}, {"energy_after", relax.energy_after}}},
+      {"iterations", it},
+      {"converged", map.flattening.converged},
+      {"stop_reason", map.flattening.stop_reason}};
   j["seconds"] = {{"cut", map.seconds.cut},
                   {"flatten", map.seconds.flatten},
                   {"lift", map.seconds.lift},

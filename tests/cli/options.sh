@@ -38,6 +38,9 @@ done
 for n in -1 -3 10001 1.5; do
   bad_value "max-iterations $n" --max-iterations map "$a" "$b" -l "$lm" --max-iterations "$n"
 done
+for n in -1 10001 2.5 x; do
+  bad_value "start-relaxation $n" --start-relaxation map "$a" "$b" -l "$lm" --start-relaxation "$n"
+done
 for n in 0 -2 11 nan; do
   bad_value "samples $n" --samples map "$a" "$b" -l "$lm" --samples "$n"
 done

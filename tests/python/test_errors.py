@@ -84,6 +84,7 @@ OPTIONS = {
     "tolerance": ({"tolerance": float("nan")}, r"tolerance: value nan is not a finite number > 0"),
     "max_iterations": ({"max_iterations": -1}, r"max_iterations: value -1 not in range 0 to 10000"),
     "samples": ({"samples": 11}, r"samples: value 11 not in range 1 to 10"),
+    "start_relaxation": ({"start_relaxation": -1}, r"start_relaxation: value -1 not in range 0 to 10000"),
     "threads": ({"threads": 0}, r"threads: value 0 not in range 1 to \d+"),
     "progress": ({"progress": 3}, r"progress: expected a callable"),
 }

@@ -29,7 +29,7 @@ def test_check_equals_cli_check_json(pair):
 def test_help_documents_every_argument():
     doc = liftmap.map.__doc__
     for word in ["VA", "FA", "VB", "FB", "landmarks", "(#VA, 3)", "(k, 2)", "p:", "h:", "normalize", "tolerance",
-                 "max_iterations", "solver", "tree", "samples", "threads", "fix_orientation", "progress",
+                 "max_iterations", "start_relaxation", "solver", "tree", "samples", "threads", "fix_orientation", "progress",
                  "InvalidInputError", "PipelineError"]:
         assert word in doc, word
     for f in (liftmap.read_mesh, liftmap.read_landmarks, liftmap.check, liftmap.Map.evaluate, liftmap.Map.transfer,
