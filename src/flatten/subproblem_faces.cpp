@@ -67,30 +67,36 @@ Eigen::Vector4d face_coordinates(const FaceSetup& fs, const Eigen::VectorXd& pos
 }
 
 Pattern make_pattern(const Setup& s) {
+  std::vector<std::array<int, 6>> var(s.faces.size());
+  for (size_t j = 0; j < s.faces.size(); ++j) var[j] = s.faces[j].var;
+  return make_pattern(var, s.n_var);
+}
+
+Pattern make_pattern(const std::vector<std::array<int, 6>>& var, int n_var) {
   std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<size_t>(s.n_faces) * 21);
-  for (const FaceSetup& fs : s.faces) {
+  trip.reserve(var.size() * 21 + static_cast<size_t>(n_var));
+  for (const std::array<int, 6>& fv : var) {
     for (int r = 0; r < 6; ++r) {
       for (int c = 0; c < 6; ++c) {
-        const int vr = fs.var[static_cast<size_t>(r)], vc = fs.var[static_cast<size_t>(c)];
+        const int vr = fv[static_cast<size_t>(r)], vc = fv[static_cast<size_t>(c)];
         if (vr >= 0 && vc >= 0 && vr >= vc) trip.emplace_back(vr, vc, 0.0);
       }
     }
   }
+  for (int i = 0; i < n_var; ++i) trip.emplace_back(i, i, 0.0);
   Pattern p;
-  p.A.resize(s.n_var, s.n_var);
+  p.A.resize(n_var, n_var);
   p.A.setFromTriplets(trip.begin(), trip.end());
   p.A.makeCompressed();
-  p.index.resize(static_cast<size_t>(s.n_faces));
+  p.index.resize(var.size());
   const int* outer = p.A.outerIndexPtr();
   const int* inner = p.A.innerIndexPtr();
-  for (int j = 0; j < s.n_faces; ++j) {
-    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+  for (size_t j = 0; j < var.size(); ++j) {
     for (int r = 0; r < 6; ++r) {
       for (int c = 0; c < 6; ++c) {
-        int& idx = p.index[static_cast<size_t>(j)][static_cast<size_t>(6 * r + c)];
+        int& idx = p.index[j][static_cast<size_t>(6 * r + c)];
         idx = -1;
-        const int vr = fs.var[static_cast<size_t>(r)], vc = fs.var[static_cast<size_t>(c)];
+        const int vr = var[j][static_cast<size_t>(r)], vc = var[j][static_cast<size_t>(c)];
         if (vr < 0 || vc < 0 || vr < vc) continue;
         const int* it = std::lower_bound(inner + outer[vc], inner + outer[vc + 1], vr);
         idx = static_cast<int>(it - inner);

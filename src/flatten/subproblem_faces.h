@@ -75,6 +75,10 @@ struct Pattern {
 /// The lower triangle of the sum of the faces' 6 x 6 corner blocks, over the unknown coordinates.
 Pattern make_pattern(const Setup& s);
 
+/// The same for any faces: var[j] the unknowns of face j's six corner coordinates (-1: fixed), n_var unknowns. The
+/// diagonal is stored even for an unknown of no face.
+Pattern make_pattern(const std::vector<std::array<int, 6>>& var, int n_var);
+
 /// The rows of a face's six corner coordinates in X (#unknowns by NC); those of the fixed gauge vertex are 0.
 template <int NC>
 Eigen::Matrix<double, 6, NC> gather_corners(const FaceSetup& fs, const Eigen::MatrixXd& X) {

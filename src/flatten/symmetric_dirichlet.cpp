@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "flatten/sparse_cholesky.h"
+#include "flatten/subproblem_faces.h"
 
 namespace liftmap {
 
@@ -21,8 +22,7 @@ using Mat46 = Eigen::Matrix<double, 4, 6>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-/// Below this many faces the per-face loops run serially.
-constexpr Eigen::Index kParallelFaces = 4000;
+using subproblem::kParallelFaces;  // below this many faces the per-face loops run serially
 
 /// d(a11, a12, a21, a22) / d(u0, v0, u1, v1, u2, v2) of one face (JacobianOperator's convention).
 Mat46 jacobian_map(const Eigen::Matrix<double, 1, 6>& g) {
@@ -132,53 +132,22 @@ double flip_free_step(const std::vector<Face>& faces, const Eigen::MatrixXd& X, 
   return 0.8 * a;
 }
 
-/// The projected Newton system's lower triangle over the free coordinates (2 per slot with dof >= 0), and where
-/// each face's entries go: built once, its values refilled every step.
-struct NewtonPattern {
-  Eigen::SparseMatrix<double> H;
-  std::vector<std::array<int, 6>> var;     ///< per face, the unknown of each corner coordinate (-1: fixed)
-  std::vector<std::array<int, 36>> index;  ///< per face, entry (a, b) of its 6 by 6 block -> value of H, -1: none
-};
-
-NewtonPattern make_newton_pattern(const std::vector<Face>& faces, const std::vector<int>& dof, int n) {
-  NewtonPattern p;
-  p.var.resize(faces.size());
-  std::vector<Eigen::Triplet<double>> triplets;
+/// The unknowns of each face's six corner coordinates (dof: per slot, its index among the free slots, or -1).
+std::vector<std::array<int, 6>> face_unknowns(const std::vector<Face>& faces, const std::vector<int>& dof) {
+  std::vector<std::array<int, 6>> var(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) {
     for (int a = 0; a < 6; ++a) {
       const int r = dof[static_cast<size_t>(faces[f].row[static_cast<size_t>(a / 2)])];
-      p.var[f][static_cast<size_t>(a)] = r < 0 ? -1 : 2 * r + a % 2;
-    }
-    for (const int ra : p.var[f]) {
-      for (const int rb : p.var[f]) {
-        if (ra >= 0 && rb >= 0 && rb <= ra) triplets.emplace_back(ra, rb, 0.0);
-      }
+      var[f][static_cast<size_t>(a)] = r < 0 ? -1 : 2 * r + a % 2;
     }
   }
-  for (int i = 0; i < 2 * n; ++i) triplets.emplace_back(i, i, 0.0);
-  p.H.resize(2 * n, 2 * n);
-  p.H.setFromTriplets(triplets.begin(), triplets.end());
-  p.H.makeCompressed();
-  p.index.resize(faces.size());
-  for (size_t f = 0; f < faces.size(); ++f) {
-    for (int a = 0; a < 6; ++a) {
-      for (int b = 0; b < 6; ++b) {
-        const int ra = p.var[f][static_cast<size_t>(a)], rb = p.var[f][static_cast<size_t>(b)];
-        int& at = p.index[f][static_cast<size_t>(6 * a + b)];
-        at = -1;
-        if (ra < 0 || rb < 0 || rb > ra) continue;
-        const int* begin = p.H.innerIndexPtr() + p.H.outerIndexPtr()[rb];
-        const int* end = p.H.innerIndexPtr() + p.H.outerIndexPtr()[rb + 1];
-        at = static_cast<int>(std::lower_bound(begin, end, ra) - p.H.innerIndexPtr());
-      }
-    }
-  }
-  return p;
+  return var;
 }
 
-/// Fills p.H with the projected Hessian of E at X (plus a tiny multiple of its diagonal, which keeps the
-/// semidefinite sum definite) and g with its gradient, over the free coordinates.
-void newton_system(const std::vector<Face>& faces, const Eigen::MatrixXd& X, NewtonPattern& p, Eigen::VectorXd& g) {
+/// Fills p.A with the projected Hessian of E at X (plus a tiny multiple of its diagonal, which keeps the
+/// semidefinite sum definite) and g with its gradient, over the unknowns var (subproblem::make_pattern's pattern).
+void newton_system(const std::vector<Face>& faces, const std::vector<std::array<int, 6>>& var, const Eigen::MatrixXd& X,
+                   subproblem::Pattern& p, Eigen::VectorXd& g) {
   const auto nf = static_cast<Eigen::Index>(faces.size());
   std::vector<Vec6> gx(faces.size());
   std::vector<Mat6> hx(faces.size());
@@ -191,12 +160,12 @@ void newton_system(const std::vector<Face>& faces, const Eigen::MatrixXd& X, New
     gx[static_cast<size_t>(f)] = face.w * face.D.transpose() * gj;
     hx[static_cast<size_t>(f)] = face.w * face.D.transpose() * hj * face.D;
   }
-  double* values = p.H.valuePtr();
-  std::fill(values, values + p.H.nonZeros(), 0.0);
-  g = Eigen::VectorXd::Zero(p.H.rows());
+  double* values = p.A.valuePtr();
+  std::fill(values, values + p.A.nonZeros(), 0.0);
+  g = Eigen::VectorXd::Zero(p.A.rows());
   for (size_t f = 0; f < faces.size(); ++f) {  // in face order: the sums do not depend on the threads
     for (int a = 0; a < 6; ++a) {
-      const int ra = p.var[f][static_cast<size_t>(a)];
+      const int ra = var[f][static_cast<size_t>(a)];
       if (ra < 0) continue;
       g(ra) += gx[f](a);
       for (int b = 0; b < 6; ++b) {
@@ -205,7 +174,7 @@ void newton_system(const std::vector<Face>& faces, const Eigen::MatrixXd& X, New
       }
     }
   }
-  for (Eigen::Index i = 0; i < p.H.rows(); ++i) p.H.coeffRef(i, i) += 1e-12 * (1 + std::abs(p.H.coeff(i, i)));
+  for (Eigen::Index i = 0; i < p.A.rows(); ++i) p.A.coeffRef(i, i) += 1e-12 * (1 + std::abs(p.A.coeff(i, i)));
 }
 
 void check_terms(const std::vector<SymmetricDirichletTerm>& terms, Eigen::Index n_slots) {
@@ -249,13 +218,14 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
     if (!fixed[static_cast<size_t>(v)]) dof[static_cast<size_t>(v)] = n++;
   }
   if (n == 0 || options.max_iterations <= 0) return res;
-  NewtonPattern pattern = make_newton_pattern(faces, dof, n);
+  const std::vector<std::array<int, 6>> var = face_unknowns(faces, dof);
+  subproblem::Pattern pattern = subproblem::make_pattern(var, 2 * n);
   SparseCholesky cholesky;
-  cholesky.analyze(pattern.H);
+  cholesky.analyze(pattern.A);
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     Eigen::VectorXd g;
-    newton_system(faces, res.U, pattern, g);
-    if (!cholesky.factorize(pattern.H)) break;
+    newton_system(faces, var, res.U, pattern, g);
+    if (!cholesky.factorize(pattern.A)) break;
     const Eigen::VectorXd dx = cholesky.solve(-g);
     Eigen::MatrixXd dX = Eigen::MatrixXd::Zero(ns, 2);
     for (Eigen::Index v = 0; v < ns; ++v) {

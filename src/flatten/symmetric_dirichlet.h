@@ -35,7 +35,7 @@ struct SymmetricDirichletTerm {
 /// Lowers E(X) = sum over the terms of weight * sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4) as the single-mesh
 /// overload below does, over the rows of X whose fixed flag is 0 (the others do not move).
 /// \param fixed #slots flags; \param X0 #slots by 2 positions with every face of every term positively oriented
-/// 	hrow InvalidInputError if sizes disagree, a corner has no slot, a weight is not positive or a face of X0 is not
+/// \throw InvalidInputError if sizes disagree, a corner has no slot, a weight is not positive or a face of X0 is not
 ///        positively oriented.
 SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<SymmetricDirichletTerm>& terms,
                                                       const std::vector<char>& fixed, const Eigen::MatrixXd& X0,

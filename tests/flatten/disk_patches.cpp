@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 
 #include "flatten/boundary_loop.h"
@@ -90,6 +91,29 @@ TestDisk make_disk(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std
   d.mesh = std::make_unique<Mesh>(d.F, nv);
   d.boundary = ccw_boundary_loop(*d.mesh);
   return d;
+}
+
+TestDisk jittered_planar_grid(int nx, int ny, double jitter, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> move(-jitter, jitter);
+  Eigen::MatrixXd V((nx + 1) * (ny + 1), 3);
+  for (int i = 0; i <= nx; ++i) {
+    for (int j = 0; j <= ny; ++j) {
+      const bool inside = i > 0 && i < nx && j > 0 && j < ny;
+      V.row(i * (ny + 1) + j) << (i + (inside ? move(rng) : 0)) / ny, (j + (inside ? move(rng) : 0)) / ny, 0;
+    }
+  }
+  Eigen::MatrixXi F(2 * nx * ny, 3);
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < ny; ++j) {
+      const int a = i * (ny + 1) + j, b = a + ny + 1;
+      F.row(2 * (i * ny + j)) << a, b, b + 1;
+      F.row(2 * (i * ny + j) + 1) << a, b + 1, a + 1;
+    }
+  }
+  std::vector<int> all(static_cast<size_t>(F.rows()));
+  for (size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+  return make_disk(V, F, all);
 }
 
 TestDisk capped_tube(double length_over_girth, int around) {

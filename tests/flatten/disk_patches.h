@@ -53,6 +53,10 @@ std::pair<TestDisk, TestDisk> punctured_pair(const std::string& a, const std::st
 /// closed by a hemisphere: the shape of a part no cut enters. `around` vertices per ring, near-equilateral faces.
 TestDisk capped_tube(double length_over_girth, int around = 16);
 
+/// A planar disk: the grid of nx by ny squares (two triangles each) of [0, nx / ny] x [0, 1], its interior vertices
+/// moved by up to `jitter` grid spacings in each coordinate (uniform, from std::mt19937(seed)).
+TestDisk jittered_planar_grid(int nx, int ny, double jitter, unsigned seed);
+
 /// One of the four (p, h) settings of problem (10), with a name for parametrised tests.
 struct Combo {
   double p;

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <random>
 
 #include "disk_patches.h"
 #include "flatten/flattening_checks.h"
@@ -16,28 +15,7 @@ namespace liftmap {
 namespace {
 
 /// A planar disk: a jittered grid of the rectangle [0, 2] x [0, 1] (the circle is far from its optimal boundary).
-testing::TestDisk planar_rectangle(int n) {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> jitter(-0.25, 0.25);
-  Eigen::MatrixXd V((2 * n + 1) * (n + 1), 3);
-  for (int i = 0; i <= 2 * n; ++i) {
-    for (int j = 0; j <= n; ++j) {
-      const bool inside = i > 0 && i < 2 * n && j > 0 && j < n;
-      V.row(i * (n + 1) + j) << (i + (inside ? jitter(rng) : 0)) / n, (j + (inside ? jitter(rng) : 0)) / n, 0;
-    }
-  }
-  Eigen::MatrixXi F(4 * n * n, 3);
-  for (int i = 0; i < 2 * n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const int a = i * (n + 1) + j, b = a + n + 1;
-      F.row(2 * (i * n + j)) << a, b, b + 1;
-      F.row(2 * (i * n + j) + 1) << a, b + 1, a + 1;
-    }
-  }
-  std::vector<int> all(static_cast<size_t>(F.rows()));
-  for (size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
-  return testing::make_disk(V, F, all);
-}
+testing::TestDisk planar_rectangle(int n) { return testing::jittered_planar_grid(2 * n, n, 0.25, 5); }
 
 /// Largest max(Sigma, 1/sigma) over the faces of mesh k at X.
 double max_distortion(const ConvexSubproblem& sp, int k, const Eigen::MatrixXd& X) {

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <random>
 
 #include "core/errors.h"
 #include "disk_patches.h"
@@ -37,28 +36,7 @@ std::vector<char> boundary_flags(const testing::TestDisk& d) {
 }
 
 /// A planar disk: a jittered grid of the unit square.
-testing::TestDisk planar_grid(int n) {
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
-  Eigen::MatrixXd V((n + 1) * (n + 1), 3);
-  for (int i = 0; i <= n; ++i) {
-    for (int j = 0; j <= n; ++j) {
-      const bool inside = i > 0 && i < n && j > 0 && j < n;
-      V.row(i * (n + 1) + j) << (i + (inside ? jitter(rng) : 0)) / n, (j + (inside ? jitter(rng) : 0)) / n, 0;
-    }
-  }
-  Eigen::MatrixXi F(2 * n * n, 3);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const int a = i * (n + 1) + j, b = a + n + 1;
-      F.row(2 * (i * n + j)) << a, b, b + 1;
-      F.row(2 * (i * n + j) + 1) << a, b + 1, a + 1;
-    }
-  }
-  std::vector<int> all(static_cast<size_t>(F.rows()));
-  for (size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
-  return testing::make_disk(V, F, all);
-}
+testing::TestDisk planar_grid(int n) { return testing::jittered_planar_grid(n, n, 0.3, 3); }
 
 // With the boundary where the plane's rest shape has it, the minimum (energy 0) is the identity: the method must
 // find it from a smooth interior displacement of it, which only its exact gradient and Hessian do in a few steps.
