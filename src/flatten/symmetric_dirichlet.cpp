@@ -120,14 +120,14 @@ double flip_root(const Vec4& j, const Vec4& dj) {
   return root;
 }
 
-/// 0.8 times the largest a such that no face flips along X + t dX for t in [0, a] (at most 1 / 0.8).
-double flip_free_step(const std::vector<Face>& faces, const Eigen::MatrixXd& X, const Eigen::MatrixXd& dX) {
+/// 0.8 times the largest a such that no face flips along X + t step_x for t in [0, a] (at most 1 / 0.8).
+double flip_free_step(const std::vector<Face>& faces, const Eigen::MatrixXd& X, const Eigen::MatrixXd& step_x) {
   const auto nf = static_cast<Eigen::Index>(faces.size());
   double a = 1 / 0.8;
 #pragma omp parallel for schedule(static) reduction(min : a) if (nf > kParallelFaces)
   for (Eigen::Index f = 0; f < nf; ++f) {
     const Face& face = faces[static_cast<size_t>(f)];
-    a = std::min(a, flip_root(face.D * corners(face, X), face.D * corners(face, dX)));
+    a = std::min(a, flip_root(face.D * corners(face, X), face.D * corners(face, step_x)));
   }
   return 0.8 * a;
 }
@@ -227,19 +227,19 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
     newton_system(faces, var, res.U, pattern, g);
     if (!cholesky.factorize(pattern.A)) break;
     const Eigen::VectorXd dx = cholesky.solve(-g);
-    Eigen::MatrixXd dX = Eigen::MatrixXd::Zero(ns, 2);
+    Eigen::MatrixXd step_x = Eigen::MatrixXd::Zero(ns, 2);
     for (Eigen::Index v = 0; v < ns; ++v) {
       const int r = dof[static_cast<size_t>(v)];
-      if (r >= 0) dX.row(v) << dx(2 * r), dx(2 * r + 1);
+      if (r >= 0) step_x.row(v) << dx(2 * r), dx(2 * r + 1);
     }
     // Flip-free, then Armijo.
     const double slope = g.dot(dx);
     if (!(slope < 0)) break;
-    double step = std::min(1.0, flip_free_step(faces, res.U, dX));
+    double step = std::min(1.0, flip_free_step(faces, res.U, step_x));
     double e = std::numeric_limits<double>::infinity();
     Eigen::MatrixXd trial;
     for (int halvings = 0; halvings < 40; ++halvings, step *= 0.5) {
-      trial = res.U + step * dX;
+      trial = res.U + step * step_x;
       e = energy(faces, trial);
       if (e <= res.energy + 1e-4 * step * slope) break;
     }
