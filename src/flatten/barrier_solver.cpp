@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "flatten/face_auxiliaries.h"
+#include "flatten/newton_system.h"
 #include "flatten/subproblem_faces.h"
 
 namespace liftmap {
@@ -39,15 +40,11 @@ constexpr int kE = 5;
 constexpr int kT = 6;
 using Vec7 = Eigen::Matrix<double, 7, 1>;
 using Mat7 = Eigen::Matrix<double, 7, 7>;
-using Mat62 = Eigen::Matrix<double, 6, 2>;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 /// BarrierSettings::centring_tolerance for p = inf, whose repaired steps need centrings closer to the central path:
 /// at 2 (p = 2's), the p = inf instances of the differential test stopped short of their certified gap.
 constexpr double kPInfCentringTolerance = 0.125;
-/// Eigenvalue ratio below which a face's 4x4 Schur block counts as ill-conditioned (its product with the corner
-/// map is then cleaned of negative eigenvalues again).
-constexpr double kWellConditioned = 1e-8;
 
 /// The arguments g_k > 0 of the log-barrier terms -log(g_k) of one face; false if outside the domain.
 struct BarrierArgs {
@@ -403,16 +400,10 @@ double merit_difference(const Setup& s, const State& z0, const State& z1, double
   return d;
 }
 
-/// Per-face pieces of the Newton system after eliminating (c_j, e_j).
-struct FaceSystem {
-  Mat6 K;                // Schur complement in the face's corner coordinates
-  Mat62 B;               // coupling corners -> (c, e): S^T H_ay
-  Eigen::Matrix2d Pinv;  // inverse of the (c, e) block
-  Vec6 gx;               // gradient in the corner coordinates
-  Eigen::Vector2d gy;    // gradient in (c, e)
-  Eigen::Vector2d hyT;   // coupling (c, e) -> T
-  Vec6 hxT;              // coupling corners -> T
-  double h_tt = 0;
+/// A face's gradient of t f0 + barrier: in its corner coordinates, its auxiliaries (c, e) and its mesh's T.
+struct FaceGradient {
+  Vec6 gx;
+  Eigen::Vector2d gy;
   double g_t = 0;
 };
 
@@ -436,11 +427,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Newton's direction for t f0 + barrier: positions dx, auxiliaries dy (2 per face), epigraph variables d_t.
-struct NewtonDirection {
-  Eigen::VectorXd dx, dy;
-  std::array<double, 2> d_t{0, 0};
-};
+/// Newton's direction for t f0 + barrier: positions x, auxiliaries y (2 per face), epigraph variables t.
+using NewtonDirection = NewtonVector;
 
 /// The state of one centring (Newton's method on t f0 + barrier at a fixed t).
 struct Centring {
@@ -463,39 +451,6 @@ enum class StepEnd {
   kCentringEnds,  ///< centred (or stalled): the barrier parameter may grow
   kMethodStops,   ///< the step cap or the precision limit of the factorisation: the method stops
 };
-
-/// Clamps the negative eigenvalues of a face's 4x4 Schur block Haa (rounding in the elimination of nearly active
-/// constraints) and returns its corner block S^T Haa S (6x6), cleaned again where Haa is ill-conditioned.
-/// Most blocks are well conditioned, which a Cholesky factorisation shows at a fraction of an eigensolver's cost:
-/// with det = prod(diag L)^2 and every eigenvalue at most the trace, lambda_min >= det / trace^3, so
-/// det >= kWellConditioned * trace^4 guarantees lambda_min >= kWellConditioned * lambda_max. Only the other blocks
-/// need eigenvalues, and their eigenvectors only if an eigenvalue is negative.
-Mat6 positive_corner_block(Eigen::Matrix4d Haa, const Mat46& S) {
-  bool well_conditioned = false;
-  {
-    const Eigen::LLT<Eigen::Matrix4d> haa_llt(Haa);
-    if (haa_llt.info() == Eigen::Success) {
-      const double d = haa_llt.matrixLLT().diagonal().prod();
-      const double tr = Haa.trace();
-      well_conditioned = d * d >= kWellConditioned * (tr * tr) * (tr * tr);
-    }
-  }
-  if (well_conditioned) return S.transpose() * Haa * S;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Haa, Eigen::EigenvaluesOnly);
-  const Eigen::Vector4d lambda = eig.eigenvalues();
-  if (lambda(0) < 0) {
-    eig.compute(Haa);
-    Haa = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
-  }
-  Mat6 K = S.transpose() * Haa * S;
-  if (lambda(0) < kWellConditioned * lambda(3)) {
-    // Ill-conditioned block: the product's rounding (relative to its largest entries) can again leave negative
-    // eigenvalues of a few percent of the smaller ones, enough to make the sum indefinite.
-    Eigen::SelfAdjointEigenSolver<Mat6> eig6(0.5 * (K + K.transpose()));
-    K = eig6.eigenvectors() * eig6.eigenvalues().cwiseMax(0.0).asDiagonal() * eig6.eigenvectors().transpose();
-  }
-  return K;
-}
 
 /// The barrier method of barrier_solver.h (Boyd and Vandenberghe, Convex Optimization, §11.3): one object per
 /// solve, whose solve() is the method's loop: centre (Newton's method on t f0 + barrier), stop if the gap bound is
@@ -524,12 +479,8 @@ class BarrierSolver : SolverBase {
   void epigraph_at_optimum();
   void eliminate_face(int j, bool isotropic);
   void assemble();
+  [[nodiscard]] CouplingColumns coupling_columns() const;
   [[nodiscard]] NewtonDirection newton_direction();
-  void solve_bordered(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx,
-                      const Eigen::MatrixXd& Dy, NewtonDirection& d) const;
-  void solve_woodbury(const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx, const Eigen::MatrixXd& Dy,
-                      NewtonDirection& d) const;
-  void apply_pinv(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, Eigen::MatrixXd& Dx, Eigen::MatrixXd& Dy);
   StepEnd line_search_step(Centring& c, const NewtonDirection& d, double lambda2, SubproblemStep& trace,
                            Clock::time_point step_start, Clock::time_point& search_start);
   double line_search(const NewtonDirection& d, double lambda2, bool repair, State& out, double& merit,
@@ -542,14 +493,14 @@ class BarrierSolver : SolverBase {
   double nu_ = 0;
   double t_ = 0;
 
-  // This step's Newton system: per-face pieces, the assembled gradient, the epigraph variables' derivatives.
+  // This step's Newton system (the faces' blocks with their auxiliaries eliminated), the faces' gradients, the
+  // assembled gradient, and the epigraph variables' derivatives.
+  NewtonSystem<HessianFaceBlock> newton_;
   std::array<double, 2> sums_{0, 0};  // S_m at z_
   std::array<double, 2> cone_{1, 1};  // p = 2: slacks T_m^2 - S_m of the objective cones
-  std::vector<FaceSystem> sys_;
-  std::vector<Eigen::Matrix<double, 6, 3>> corner_rows_;
+  std::vector<FaceGradient> grad_;
   Eigen::VectorXd gx_, gy_;
   std::array<double, 2> g_t_{0, 0}, h_tt_{0, 0};
-  double last_shift_ = 0;  // relative diagonal shift of the last factorisation that needed one
 
   State centred_;  // the iterate at the end of the last centring that ended centred, and its gap bound
   double centred_gap_ = kInf;
@@ -558,47 +509,31 @@ class BarrierSolver : SolverBase {
 
 BarrierSolver::BarrierSolver(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
                              const SubproblemSettings& settings, SparseCholesky& cholesky, AssemblyStructure* cache)
-    : SolverBase(problem, X0, settings, cholesky, cache) {
+    : SolverBase(problem, X0, settings, cholesky, cache), newton_(s_, *assembly_, cholesky_) {
   start_auxiliaries(X0);
   nu_ = total_nu(s_);
   start_barrier_parameter();
-  sys_.resize(static_cast<size_t>(nf_));
-  corner_rows_.resize(static_cast<size_t>(nf_));
+  grad_.resize(static_cast<size_t>(nf_));
 }
 
 // Strictly feasible start for the auxiliaries: c between |(gamma,delta)| and alpha cos + beta sin.
 void BarrierSolver::start_auxiliaries(const Eigen::MatrixXd& X0) {
   z_.pos = start_positions(X0);
+  const std::vector<FaceStart> start = strictly_feasible_start(s_, z_.pos);
   z_.c.resize(nf_);
   z_.e.resize(nf_);
   z_.T = {0, 0};
-  int first_infeasible = nf_;
-#pragma omp parallel for schedule(static) reduction(min : first_infeasible) if (nf_ > kParallelFaces)
   for (int j = 0; j < nf_; ++j) {
+    const FaceStart& f = start[static_cast<size_t>(j)];
+    z_.c(j) = f.lo + 0.1 * (f.l - f.lo);
     const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    const Vec7 q = local_vars(s_, z_, j);
-    const double cn = std::hypot(q(2), q(3));
-    const double l = q(0) * fs.cs + q(1) * fs.sn;
-    if (!(l - cn > 0)) {
-      first_infeasible = std::min(first_infeasible, j);
-      continue;
-    }
-    z_.c(j) = cn + 0.1 * (l - cn);
     if (fs.ghost()) {
       z_.e(j) = 0;
       continue;
     }
-    const double m = l - z_.c(j);
-    const double n = std::hypot(q(0), q(1));
-    z_.e(j) = 1.5 * (st_.h_max ? std::max(n + z_.c(j), 1.0 / m) : std::hypot(n + z_.c(j), 1.0 / m));
-  }
-  if (first_infeasible < nf_) {
-    throw InvalidInputError("convex subproblem: the start is not strictly feasible (sigma_tilde <= 0 on face " +
-                            std::to_string(first_infeasible) + ")");
-  }
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    if (!fs.ghost()) z_.T[static_cast<size_t>(fs.mesh)] = std::max(z_.T[static_cast<size_t>(fs.mesh)], z_.e(j));
+    const double m = f.l - z_.c(j);
+    z_.e(j) = 1.5 * (st_.h_max ? std::max(f.n + z_.c(j), 1.0 / m) : std::hypot(f.n + z_.c(j), 1.0 / m));
+    z_.T[static_cast<size_t>(fs.mesh)] = std::max(z_.T[static_cast<size_t>(fs.mesh)], z_.e(j));
   }
 }
 
@@ -748,10 +683,9 @@ void BarrierSolver::epigraph_at_optimum() {
 
 // Face j's derivatives of the barrier (plus, p = 2, the per-face part of the objective cone's barrier: the diagonal
 // of its Hessian in e_j; the rank-one part couples the faces and is added by Woodbury in newton_direction), with its
-// auxiliaries (c, e) eliminated: the corner block K of the Schur system, the coupling B, and the gradients.
+// auxiliaries (c, e) eliminated (HessianFaceBlock), and its gradient.
 void BarrierSolver::eliminate_face(int j, bool isotropic) {
   const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-  FaceSystem& fsys = sys_[static_cast<size_t>(j)];
   const Vec7 q = local_vars(s_, z_, j);
   Vec7 g;
   Mat7 H;
@@ -761,62 +695,31 @@ void BarrierSolver::eliminate_face(int j, bool isotropic) {
     g(kE) += 2 * fs.w * q(kE) / gm;
     H(kE, kE) += 2 * fs.w / gm;
   }
-  const Eigen::Matrix2d Pyy = H.block<2, 2>(kC, kC);
-  fsys.Pinv = Pyy.inverse();
-  fsys.Pinv = 0.5 * (fsys.Pinv + fsys.Pinv.transpose());
-  const Eigen::Matrix<double, 4, 2> Hay = H.block<4, 2>(kA, kC);
-  // Schur complement Haa - Hay Pyy^-1 Hay^T with the subtracted term formed as W^T W, W = L^-1 Hay^T (Pyy = L L^T):
-  // symmetric and positive semidefinite by construction. Pyy's entries span up to 20 orders of magnitude on nearly
-  // active faces, and the plain product with its inverse is then neither.
-  Eigen::Matrix4d Haa = H.block<4, 4>(kA, kA);
-  const Eigen::LLT<Eigen::Matrix2d> pyy_llt(Pyy);
-  if (pyy_llt.info() == Eigen::Success) {
-    const Eigen::Matrix<double, 2, 4> W = pyy_llt.matrixL().solve(Hay.transpose());
-    Haa -= W.transpose() * W;
-  } else {
-    Haa -= Hay * fsys.Pinv * Hay.transpose();
-  }
-  Haa = 0.5 * (Haa + Haa.transpose());
-  if (isotropic && !fs.ghost()) {
-    // Raise the smaller curvature of the (gamma, delta) block to the larger one, which makes the block its largest
-    // eigenvalue times the identity: it only grows (stays positive semidefinite), so the step is still a descent
-    // direction.
-    const Eigen::Matrix2d G = Haa.block<2, 2>(2, 2);
-    const double half = 0.5 * G.trace();
-    const double lmax = half + std::sqrt(std::max(0.0, half * half - G.determinant()));
-    if (lmax > 0) Haa.block<2, 2>(2, 2) = lmax * Eigen::Matrix2d::Identity();
-  }
-  fsys.K = positive_corner_block(Haa, fs.S);
-  fsys.B = fs.S.transpose() * Hay;
-  fsys.gx = fs.S.transpose() * g.head<4>();
-  fsys.gy = g.segment<2>(kC);
-  fsys.hyT = H.block<2, 1>(kC, kT);
-  fsys.hxT = fs.S.transpose() * H.block<4, 1>(kA, kT);
-  fsys.h_tt = H(kT, kT);
-  fsys.g_t = g(kT);
+  newton_.faces[static_cast<size_t>(j)].eliminate(H, fs.S, isotropic && !fs.ghost());
+  FaceGradient& fg = grad_[static_cast<size_t>(j)];
+  fg.gx = fs.S.transpose() * g.head<4>();
+  fg.gy = g.segment<2>(kC);
+  fg.g_t = g(kT);
 }
 
 // Assembles the Schur system and the gradient: the faces of the two halves of the factorisation's split on two
 // threads (FacePartition), the rest after them; then the epigraph variables' derivatives.
 void BarrierSolver::assemble() {
-  Pattern& pattern = assembly_->pattern;
-  clear_values(pattern);
-  double* values = pattern.A.valuePtr();
+  newton_.assemble(SchurAssembly::kPartitioned);
   gx_ = Eigen::VectorXd::Zero(nv_);
   gy_.resize(2 * nf_);
   std::array<std::array<double, 2>, 3> list_g_t{}, list_h_tt{};  // per face list, summed in list order below
   for_each_face_partitioned(assembly_->parts, [&](int j, int list) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+    const FaceGradient& fg = grad_[static_cast<size_t>(j)];
     const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
     for (int r = 0; r < 6; ++r) {
       const int v = fs.var[static_cast<size_t>(r)];
-      if (v >= 0) gx_(v) += fsys.gx(r);
+      if (v >= 0) gx_(v) += fg.gx(r);
     }
-    add_corner_block(values, pattern.index[static_cast<size_t>(j)], fsys.K);
-    gy_.segment<2>(2 * j) = fsys.gy;
+    gy_.segment<2>(2 * j) = fg.gy;
     if (fs.ghost()) return;
-    list_g_t[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.g_t;
-    list_h_tt[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fsys.h_tt;
+    list_g_t[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += fg.g_t;
+    list_h_tt[static_cast<size_t>(list)][static_cast<size_t>(fs.mesh)] += newton_.faces[static_cast<size_t>(j)].h_tt;
   });
   g_t_ = {t_, t_};
   h_tt_ = {0, 0};
@@ -834,112 +737,31 @@ void BarrierSolver::assemble() {
   }
 }
 
-// Applies P^{-1} to the three columns (R_x; R_y) (the gradient and the two coupling columns of (10a)), where P is the
-// Hessian without the global coupling; Ry is 2 nf rows.
-void BarrierSolver::apply_pinv(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, Eigen::MatrixXd& Dx,
-                               Eigen::MatrixXd& Dy) {
-  assert(Rx.cols() == 3 && Ry.cols() == 3);
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
-    corner_rows_[static_cast<size_t>(j)].noalias() = fsys.B * (fsys.Pinv * Ry.block<2, 3>(2 * j, 0));
-  }
-  Eigen::MatrixXd Rt = Rx;
-  subtract_corner_rows<3>(s_, assembly_->parts, corner_rows_, Rt);
-  Dx = cholesky_.solve(Rt);
-  Dy.resize(2 * nf_, 3);
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+// The coupling columns of (10a): p = inf, H's blocks between the T_m and the rest; p = 2, the vectors v_m of the
+// rank-one parts v_m v_m^T of the objective cones' Hessians, v_m = 2 w_j e_j / cone_m on the e_j of mesh m.
+CouplingColumns BarrierSolver::coupling_columns() const {
+  if (st_.p_inf) return newton_.face_coupling();
+  return newton_.rank_two_columns(kE - kC, [&](int j) {
     const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    const Eigen::Matrix<double, 6, 3> dxl = gather_corners<3>(fs, Dx);
-    Dy.block<2, 3>(2 * j, 0).noalias() = fsys.Pinv * (Ry.block<2, 3>(2 * j, 0) - fsys.B.transpose() * dxl);
-  }
+    return 2 * fs.w * z_.e(j) / cone_[static_cast<size_t>(fs.mesh)];
+  });
 }
 
-// p = inf: the bordered system [[P, Q], [Q^T, h_tt]]: Schur complement on the two epigraph variables.
-void BarrierSolver::solve_bordered(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx,
-                                   const Eigen::MatrixXd& Dy, NewtonDirection& d) const {
-  Eigen::Matrix2d M;
-  Eigen::Vector2d rhs;
-  for (int a = 0; a < 2; ++a) {
-    rhs(a) = -g_t_[static_cast<size_t>(a)] - Rx.col(1 + a).dot(Dx.col(0)) - Ry.col(1 + a).dot(Dy.col(0));
-    for (int b = 0; b < 2; ++b) {
-      M(a, b) = (a == b ? h_tt_[static_cast<size_t>(a)] : 0.0) - Rx.col(1 + a).dot(Dx.col(1 + b)) -
-                Ry.col(1 + a).dot(Dy.col(1 + b));
-    }
-  }
-  const Eigen::Vector2d sol = M.ldlt().solve(rhs);
-  d.d_t = {sol(0), sol(1)};
-  d.dx -= Dx.middleCols(1, 2) * sol;
-  d.dy -= Dy.middleCols(1, 2) * sol;
-}
-
-// p = 2: the Hessian is A = P + V V^T (V = [v_0 v_1], Woodbury: A^-1 V = Z M^-1 with Z = P^-1 V, M = I + V^T Z,
-// which is >= I: no cancellation) bordered by the T_m, whose coupling column with the e_j is beta_m v_m,
-// beta_m = -2 T_m / cone_m. Eliminate the (positions, auxiliaries) block, solve the 2x2 system in (dT_0, dT_1), then
-// back-substitute.
-void BarrierSolver::solve_woodbury(const Eigen::MatrixXd& Ry, const Eigen::MatrixXd& Dx, const Eigen::MatrixXd& Dy,
-                                   NewtonDirection& d) const {
-  Eigen::Matrix2d G;
-  Eigen::Vector2d vtz;
-  for (int a = 0; a < 2; ++a) {
-    vtz(a) = Ry.col(1 + a).dot(Dy.col(0));
-    for (int b = 0; b < 2; ++b) G(a, b) = Ry.col(1 + a).dot(Dy.col(1 + b));
-  }
-  G = 0.5 * (G + G.transpose());
-  const Eigen::Matrix2d Minv = (Eigen::Matrix2d::Identity() + G).inverse();
-  const Eigen::Matrix2d GM = G * Minv;         // V^T A^-1 V
-  const Eigen::Vector2d vta = vtz - GM * vtz;  // V^T A^-1 (-g)
-  const Eigen::Vector2d beta(-2 * z_.T[0] / cone_[0], -2 * z_.T[1] / cone_[1]);
-  Eigen::Matrix2d Sc;
-  Eigen::Vector2d rhs;
-  for (int a = 0; a < 2; ++a) {
-    rhs(a) = -g_t_[static_cast<size_t>(a)] - beta(a) * vta(a);
-    for (int b = 0; b < 2; ++b)
-      Sc(a, b) = (a == b ? h_tt_[static_cast<size_t>(a)] : 0.0) - beta(a) * beta(b) * GM(a, b);
-  }
-  const Eigen::Vector2d ds = Sc.ldlt().solve(rhs);
-  d.d_t = {ds(0), ds(1)};
-  const Eigen::Vector2d coef = Minv * (vtz + beta.cwiseProduct(ds));
-  d.dx -= Dx.middleCols(1, 2) * coef;
-  d.dy -= Dy.middleCols(1, 2) * coef;
-}
-
-// The Newton direction, with the global coupling of (10a) handled on top of P^{-1}: P^-1 applied to the gradient and
-// the two coupling columns in one solve (p = inf: H's blocks between T_m and the rest; p = 2: the rank-one part
-// v_m v_m^T of the objective cone's Hessian, v_m = 2 w_j e_j / cone_m).
+// The Newton direction: P^-1 applied to the gradient and the two coupling columns in one solve, then the global
+// coupling of (10a) (CoupledSolve): p = inf, bordered by the T_m; p = 2, the rank-two part, coupled to the T_m by
+// beta_m v_m, beta_m = -2 T_m / cone_m.
 NewtonDirection BarrierSolver::newton_direction() {
+  CouplingColumns C = coupling_columns();
   Eigen::MatrixXd Rx(nv_, 3), Ry(2 * nf_, 3);
-  Rx.setZero();
-  Ry.setZero();
-  Rx.col(0) = -gx_;
-  Ry.col(0) = -gy_;
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    if (fs.ghost()) continue;
-    const int col = 1 + fs.mesh;
-    if (st_.p_inf) {
-      Ry.block<2, 1>(2 * j, col) = sys_[static_cast<size_t>(j)].hyT;
-      for (int r = 0; r < 6; ++r) {
-        const int v = fs.var[static_cast<size_t>(r)];
-        if (v >= 0) Rx(v, col) += sys_[static_cast<size_t>(j)].hxT(r);
-      }
-    } else {
-      Ry(2 * j + 1, col) = 2 * fs.w * z_.e(j) / cone_[static_cast<size_t>(fs.mesh)];
-    }
-  }
+  Rx << -gx_, C.x;
+  Ry << -gy_, C.y;
   Eigen::MatrixXd Dx, Dy;
-  apply_pinv(Rx, Ry, Dx, Dy);
-  NewtonDirection d;
-  d.dx = Dx.col(0);
-  d.dy = Dy.col(0);
-  if (st_.p_inf) {
-    solve_bordered(Rx, Ry, Dx, Dy, d);
-  } else {
-    solve_woodbury(Ry, Dx, Dy, d);
-  }
-  return d;
+  newton_.apply_pinv<3>(Rx, Ry, Dx, Dy);
+  CouplingColumns pinv_c{Dx.rightCols<2>(), Dy.rightCols<2>()};
+  const CoupledSolve coupled = st_.p_inf ? CoupledSolve::bordered(std::move(C), std::move(pinv_c), h_tt_)
+                                         : CoupledSolve::rank_two(std::move(C), std::move(pinv_c), h_tt_,
+                                                                  {-2 * z_.T[0] / cone_[0], -2 * z_.T[1] / cone_[1]});
+  return coupled.solve(Dx.col(0), Dy.col(0), {-g_t_[0], -g_t_[1]});
 }
 
 StepEnd BarrierSolver::newton_step(Centring& c) {
@@ -954,13 +776,13 @@ StepEnd BarrierSolver::newton_step(Centring& c) {
   trace.seconds_derivatives = std::chrono::duration<double>(factor_start - step_start).count();
   // Numerical limit of double precision reached: the iterate is strictly feasible; stop here and let the caller
   // judge the gap bound.
-  if (!factorize_with_shift(cholesky_, assembly_->pattern.A, last_shift_)) {
+  if (!newton_.factorize()) {
     result_.status = SubproblemStatus::kNotFactorizable;
     return StepEnd::kMethodStops;
   }
   trace.seconds_factorization = seconds_since(factor_start);
   const NewtonDirection d = newton_direction();
-  const double lambda2 = -(gx_.dot(d.dx) + gy_.dot(d.dy)) - (g_t_[0] * d.d_t[0] + g_t_[1] * d.d_t[1]);
+  const double lambda2 = -(gx_.dot(d.x) + gy_.dot(d.y)) - (g_t_[0] * d.t[0] + g_t_[1] * d.t[1]);
   if (!std::isfinite(lambda2)) throw PipelineError("convex subproblem: the Newton step is not finite");
   ++result_.iterations;
   trace.lambda2 = lambda2;
@@ -996,8 +818,8 @@ double BarrierSolver::line_search(const NewtonDirection& d, double lambda2, bool
                                   bool& merit_limited) const {
   double step = 1;
   for (int halvings = 0; halvings < 60; ++halvings, step *= 0.5) {
-    const bool ok = st_.p_inf ? step_state_inf(s_, z_, d.dx, d.dy, d.d_t, step, repair, out)
-                              : step_state_2(s_, z_, d.dx, d.dy, step, t_, out);
+    const bool ok = st_.p_inf ? step_state_inf(s_, z_, d.x, d.y, d.t, step, repair, out)
+                              : step_state_2(s_, z_, d.x, d.y, step, t_, out);
     if (!ok) {
       merit_limited = false;
       continue;

@@ -6,12 +6,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/errors.h"
 #include "flatten/face_cones.h"
+#include "flatten/newton_system.h"
 #include "flatten/second_order_cone.h"
 #include "flatten/subproblem_faces.h"
 
@@ -22,8 +24,6 @@ namespace {
 using namespace subproblem;  // NOLINT(google-build-using-namespace): the shared per-face data
 
 constexpr int kMRows = kRows + kAux;  // rows of a face's scaled constraint matrix W^-1 A (cones, objective, unit rows)
-using Vec4 = Eigen::Vector4d;
-using Mat4 = Eigen::Matrix4d;
 using VecR = Eigen::Matrix<double, kRows, 1>;
 using FaceRows = Eigen::Matrix<double, kRows, Eigen::Dynamic>;  // per face (column), its cones' rows
 using Clock = std::chrono::steady_clock;
@@ -48,13 +48,18 @@ struct ConeVectors {
 
 /// A vector over the primal variables: positions (x, the unknown coordinates), auxiliaries (y, kAux per face) and
 /// the epigraph variables T_m (t). Directions, right-hand sides and residuals are such vectors.
-struct Unknowns {
-  Eigen::VectorXd x, y;
-  std::array<double, 2> t{};
-};
+using Unknowns = NewtonVector;
 
 double max_abs(const Unknowns& u) {
   return std::max({u.x.lpNorm<Eigen::Infinity>(), u.y.lpNorm<Eigen::Infinity>(), std::abs(u.t[0]), std::abs(u.t[1])});
+}
+
+/// d, checked. \throw PipelineError if some entry is not finite.
+Unknowns finite_step(Unknowns d) {
+  if (!d.x.allFinite() || !d.y.allFinite() || !std::isfinite(d.t[0]) || !std::isfinite(d.t[1])) {
+    throw PipelineError("convex subproblem: the primal-dual step is not finite");
+  }
+  return d;
 }
 
 /// The iterate: positions, auxiliaries (4 per face), epigraph variables; the dual variables of every cone.
@@ -79,14 +84,8 @@ struct ObjectiveCone {
   Eigen::VectorXd sqrt_w;
 };
 
-/// Per-face pieces of one iteration's Newton system, the auxiliaries eliminated (eliminate_face).
-struct FaceSystem {
-  Mat6 K;                                    // Schur complement in the corner coordinates
-  Mat4 R;                                    // H_yy = R^T R
-  Mat4 Cq;                                   // R^-T H_yq: H_yq = R^T Cq
-  Vec6 hxT;                                  // coupling corners -> T (p = inf)
-  Vec4 hyT;                                  // coupling auxiliaries -> T (p = inf)
-  double h_tt = 0;                           // (p = inf)
+/// The Nesterov-Todd scalings of one face's cones in an iteration (eliminate_face).
+struct FaceScaling {
   std::array<soc::Scaling<3>, kMaxCones> w;  // scalings of the face's cones (dimension 1: beta = sqrt(s / z) only)
   VecR lambda;                               // their scaled points
 };
@@ -128,6 +127,34 @@ class PrimalDualSolver : SolverBase {
   [[nodiscard]] VecL local_direction(const FaceSetup& fs, const Unknowns& d, int j) const;
   [[nodiscard]] std::array<double, 2> dual_t(const Iterate& x) const;
   [[nodiscard]] bool unused_auxiliary(int j, int a) const;
+  /// Per face j (column) and cone k (rows 3k ..), A_k x_j + b_k (with_offset) or A_k x_j, x_j = local(j) the face's
+  /// local vector.
+  template <class Local>
+  [[nodiscard]] FaceRows cone_rows(Local&& local, bool with_offset) const {
+    FaceRows out = FaceRows::Zero(kRows, nf_);
+#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
+    for (int j = 0; j < nf_; ++j) {
+      const FaceCones& fc = cones_[static_cast<size_t>(j)];
+      const VecL xl = local(j);
+      for (int k = 0; k < fc.n; ++k) {
+        const Cone& cone = fc.cone[static_cast<size_t>(k)];
+        Eigen::Vector3d v = cone_value(cone, xl);
+        if (!with_offset) v -= cone.b;
+        out.col(j).segment(3 * k, cone.dim) = v.head(cone.dim);
+      }
+    }
+    return out;
+  }
+  /// Runs fn(j, k, dim) for every cone k (of dimension dim) of every face j; the faces on OpenMP threads for large
+  /// problems.
+  template <class Fn>
+  void for_each_cone(Fn&& fn) const {
+#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
+    for (int j = 0; j < nf_; ++j) {
+      const FaceCones& fc = cones_[static_cast<size_t>(j)];
+      for (int k = 0; k < fc.n; ++k) fn(j, k, fc.cone[static_cast<size_t>(k)].dim);
+    }
+  }
   void adjoint(const ConeVectors& Z, Unknowns& r, double* z_max = nullptr) const;
   void zero_unused(Eigen::VectorXd& y) const;
 
@@ -148,12 +175,7 @@ class PrimalDualSolver : SolverBase {
   SubproblemResult finish();
 
   // The Newton system H d = r.
-  template <int NC>
-  void apply_pinv(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, Eigen::MatrixXd& Dx, Eigen::MatrixXd& Dy) const;
-  void coupling_columns();
-  void finish_coupling();
-  [[nodiscard]] Unknowns finish_solve(Eigen::VectorXd pinv_rx, Eigen::VectorXd pinv_ry,
-                                      const std::array<double, 2>& r_t) const;
+  [[nodiscard]] CouplingColumns coupling_columns() const;
   [[nodiscard]] Unknowns solve_newton(const Unknowns& r) const;
   void apply_newton_matrix(const Unknowns& d, Unknowns& h) const;
   [[nodiscard]] double newton_residual(const Unknowns& d, const Unknowns& r, Unknowns& e) const;
@@ -166,18 +188,17 @@ class PrimalDualSolver : SolverBase {
   double nu_ = 0;  // degree of the cone program
 
   // The scalings and the eliminated Newton system of the current iteration.
-  std::vector<FaceSystem> sys_;
+  NewtonSystem<GramFaceBlock> newton_;
+  std::vector<FaceScaling> scal_;
   std::array<soc::Scaling<Eigen::Dynamic>, 2> w_obj_;
   std::array<Eigen::VectorXd, 2> lambda_obj_;
   // Rank-one vectors u_m and coupling factors kappa_m of the objective cones (p = 2): their Hessian part is
   // diag(w_j / beta^2) on the e_j + u_m u_m^T, coupled to T_m by kappa_m u_m, with h_TT on T_m.
   std::array<Eigen::VectorXd, 2> u_obj_;
   std::array<double, 2> kappa_{0, 0}, h_tt_{0, 0};
-  // The coupling columns of the T_m (p = inf: H's blocks between T_m and the positions and auxiliaries; p = 2: u_m),
-  // P^-1 applied to them (solved together with the predictor's right-hand side), and the 2 x 2 systems built from them.
-  Eigen::MatrixXd Cx_, Cy_, Dcx_, Dcy_;
-  Eigen::Matrix2d G_, Minv_, GM_, Sc_;
-  double last_shift_ = 0;
+  // The global coupling through the T_m, set up with the predictor (P^-1 applied to the coupling columns together
+  // with its right-hand side) and used by every solve of the iteration.
+  std::optional<CoupledSolve> coupled_;
 
   // Progress and the best certified iterate (what a stop at the precision limit returns).
   int short_steps_ = 0;
@@ -189,7 +210,7 @@ class PrimalDualSolver : SolverBase {
 PrimalDualSolver::PrimalDualSolver(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
                                    const SubproblemSettings& settings, SparseCholesky& cholesky,
                                    AssemblyStructure* cache)
-    : SolverBase(problem, X0, settings, cholesky, cache) {
+    : SolverBase(problem, X0, settings, cholesky, cache), newton_(s_, *assembly_, cholesky_) {
   it_.pos = start_positions(X0);
   start_auxiliaries();
   // The cones of every face (their rows depend only on the rotation and the ghost bound).
@@ -199,7 +220,7 @@ PrimalDualSolver::PrimalDualSolver(const ConvexSubproblem& problem, const Eigen:
   nu_ = st_.p_inf ? 0.0 : 2.0;
   for (const FaceCones& fc : cones_) nu_ += fc.n;
   start_duals();
-  sys_.resize(static_cast<size_t>(nf_));
+  scal_.resize(static_cast<size_t>(nf_));
   best_pos_ = it_.pos;
 }
 
@@ -207,15 +228,10 @@ PrimalDualSolver::PrimalDualSolver(const ConvexSubproblem& problem, const Eigen:
 void PrimalDualSolver::start_auxiliaries() {
   it_.y.setZero(kAux, nf_);
   std::array<double, 2> e_max{0, 0};
+  const std::vector<FaceStart> start = strictly_feasible_start(s_, it_.pos);
   for (int j = 0; j < nf_; ++j) {
     const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    const Eigen::Vector4d a = face_coordinates(fs, it_.pos);
-    const double cn = std::hypot(a(2), a(3)), n = std::hypot(a(0), a(1));
-    const double l = a(0) * fs.cs + a(1) * fs.sn;
-    if (!(l - cn > 0)) {
-      throw InvalidInputError("convex subproblem: the start is not strictly feasible (sigma_tilde <= 0 on face " +
-                              std::to_string(j) + ")");
-    }
+    const auto [n, cn, l] = start[static_cast<size_t>(j)];
     const double c = cn + 0.5 * (l - cn), m = l - c;
     it_.y(0, j) = c;
     if (fs.ghost()) continue;
@@ -290,18 +306,15 @@ Eigen::VectorXd PrimalDualSolver::objective_slack(const Iterate& x, size_t m) co
 
 // The slacks of every cone at x; false if some cone is not strictly satisfied.
 bool PrimalDualSolver::slacks(const Iterate& x, ConeVectors& S) const {
-  S.faces.setZero(kRows, nf_);
+  S.faces = cone_rows([&](int j) { return local_x(s_.faces[static_cast<size_t>(j)], x, j); }, true);
   int ok = 1;
 #pragma omp parallel for schedule(static) reduction(min : ok) if (nf_ > kParallelFaces)
   for (int j = 0; j < nf_; ++j) {
-    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
     const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    const VecL xl = local_x(fs, x, j);
     for (int k = 0; k < fc.n; ++k) {
-      const Cone& cone = fc.cone[static_cast<size_t>(k)];
-      const Eigen::Vector3d v = cone_value(cone, xl);
-      S.faces.col(j).segment(3 * k, cone.dim) = v.head(cone.dim);
-      if (!(cone.dim == 1 ? v(0) > 0 : soc::interior(v))) ok = 0;
+      const bool inside = fc.cone[static_cast<size_t>(k)].dim == 1 ? S.faces(3 * k, j) > 0
+                                                                   : soc::interior(S.faces.col(j).segment<3>(3 * k));
+      if (!inside) ok = 0;
     }
   }
   if (!st_.p_inf) {
@@ -363,18 +376,7 @@ Eigen::VectorXd PrimalDualSolver::objective_direction(const Unknowns& d, size_t 
 // A d per cone: the change of every cone's slack along the direction d (s = A x + b).
 ConeVectors PrimalDualSolver::slack_direction(const Unknowns& d) const {
   ConeVectors ds;
-  ds.faces = FaceRows::Zero(kRows, nf_);
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    const VecL dl = local_direction(fs, d, j);
-    for (int k = 0; k < fc.n; ++k) {
-      const Cone& cone = fc.cone[static_cast<size_t>(k)];
-      const Eigen::Vector3d dsk = cone_value(cone, dl) - cone.b;
-      ds.faces.col(j).segment(3 * k, cone.dim) = dsk.head(cone.dim);
-    }
-  }
+  ds.faces = cone_rows([&](int j) { return local_direction(s_.faces[static_cast<size_t>(j)], d, j); }, false);
   if (!st_.p_inf) {
     for (size_t m = 0; m < 2; ++m) ds.objective[m] = objective_direction(d, m);
   }
@@ -527,7 +529,7 @@ void PrimalDualSolver::scale_objective_cones(double& gap) {
 bool PrimalDualSolver::eliminate_face(int j, double& gap) {
   const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
   const FaceCones& fc = cones_[static_cast<size_t>(j)];
-  FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+  FaceScaling& fsys = scal_[static_cast<size_t>(j)];
   Eigen::Matrix<double, kMRows, kLocal> M = Eigen::Matrix<double, kMRows, kLocal>::Zero();
   int row = 0;
   fsys.lambda.setZero();
@@ -563,20 +565,7 @@ bool PrimalDualSolver::eliminate_face(int j, double& gap) {
   for (int a = kC; a < kT; ++a) {  // unused auxiliaries: a unit row (zero right-hand side, zero step)
     if (M.col(a).isZero()) M(row++, a) = 1;
   }
-  const Eigen::Matrix<double, kMRows, kAux> My = M.middleCols<kAux>(kC);
-  Eigen::Matrix<double, kMRows, 5> Mq;  // the kept columns: (alpha, beta, gamma, delta, T)
-  Mq.leftCols<4>() = M.leftCols<4>();
-  Mq.col(4) = M.col(kT);
-  const Eigen::HouseholderQR<Eigen::Matrix<double, kMRows, kAux>> qr(My);
-  const Eigen::Matrix<double, kMRows, 5> QtM = qr.householderQ().transpose() * Mq;
-  fsys.R = qr.matrixQR().topRows<kAux>().triangularView<Eigen::Upper>();
-  fsys.Cq = QtM.topLeftCorner<kAux, 4>();
-  const Eigen::Matrix<double, kMRows - kAux, 4> Zq = QtM.bottomLeftCorner<kMRows - kAux, 4>();
-  fsys.K = fs.S.transpose() * (Zq.transpose() * Zq) * fs.S;
-  fsys.hxT = fs.S.transpose() * (M.leftCols<4>().transpose() * M.col(kT));
-  fsys.hyT = My.transpose() * M.col(kT);
-  fsys.h_tt = M.col(kT).squaredNorm();
-  return fsys.R.diagonal().cwiseAbs().minCoeff() > 0;
+  return newton_.faces[static_cast<size_t>(j)].eliminate<kMRows>(M, fs.S);
 }
 
 // The scalings of every cone at (s, z) and the Newton system's per-face pieces; returns the gap s^T z.
@@ -593,7 +582,7 @@ double PrimalDualSolver::scale_and_eliminate() {
     h_tt_ = {0, 0};
     for (int j = 0; j < nf_; ++j) {
       const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-      if (!fs.ghost()) h_tt_[static_cast<size_t>(fs.mesh)] += sys_[static_cast<size_t>(j)].h_tt;
+      if (!fs.ghost()) h_tt_[static_cast<size_t>(fs.mesh)] += newton_.faces[static_cast<size_t>(j)].h_tt;
     }
   }
   return gap;
@@ -605,125 +594,28 @@ double PrimalDualSolver::scale_and_eliminate() {
 // iterates follow (docs/performance.md). p = inf: the T couplings were taken before the elimination; they are the
 // plain blocks of H (the bordered solve eliminates through P^-1, which includes the auxiliaries).
 bool PrimalDualSolver::factor_system() {
-  Pattern& pattern = assembly_->pattern;
-  clear_values(pattern);
-  double* values = pattern.A.valuePtr();
-  for (int j = 0; j < nf_; ++j) {
-    add_corner_block(values, pattern.index[static_cast<size_t>(j)], sys_[static_cast<size_t>(j)].K);
-  }
-  return factorize_with_shift(cholesky_, pattern.A, last_shift_);
+  newton_.assemble(SchurAssembly::kFaceOrder);
+  return newton_.factorize();
 }
 
-// Applies P^-1 (the Hessian without the global coupling) to the NC columns (Rx; Ry), Ry 4 nf rows.
-template <int NC>
-void PrimalDualSolver::apply_pinv(const Eigen::MatrixXd& Rx, const Eigen::MatrixXd& Ry, Eigen::MatrixXd& Dx,
-                                  Eigen::MatrixXd& Dy) const {
-  using Corner = Eigen::Matrix<double, 6, NC>;
-  using Aux = Eigen::Matrix<double, kAux, NC>;
-  std::vector<Corner> corner_rows(static_cast<size_t>(nf_));
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
-    // B H_yy^-1 r = S^T H_qy H_yy^-1 r = S^T Cq^T R^-T r
-    const Aux t =
-        fsys.R.transpose().template triangularView<Eigen::Lower>().solve(Ry.template block<kAux, NC>(kAux * j, 0));
-    corner_rows[static_cast<size_t>(j)].noalias() =
-        s_.faces[static_cast<size_t>(j)].S.transpose() * (fsys.Cq.transpose() * t);
-  }
-  Eigen::MatrixXd Rt = Rx;
-  subtract_corner_rows<NC>(s_, assembly_->parts, corner_rows, Rt);
-  Dx = cholesky_.solve(Rt);
-  Dy.resize(kAux * nf_, NC);
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
-    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    const Corner dxl = gather_corners<NC>(fs, Dx);
-    // H_yy^-1 (r - H_yq S dx) = R^-1 (R^-T r - Cq S dx)
-    const Aux t =
-        fsys.R.transpose().template triangularView<Eigen::Lower>().solve(Ry.template block<kAux, NC>(kAux * j, 0));
-    Dy.template block<kAux, NC>(kAux * j, 0) =
-        fsys.R.template triangularView<Eigen::Upper>().solve(t - fsys.Cq * (fs.S * dxl));
-  }
-}
-
-void PrimalDualSolver::coupling_columns() {
-  Cx_.setZero(nv_, 2);
-  Cy_.setZero(kAux * nf_, 2);
-  if (st_.p_inf) {
-    for (int j = 0; j < nf_; ++j) {
-      const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-      if (fs.ghost()) continue;
-      Cy_.block<kAux, 1>(kAux * j, fs.mesh) = sys_[static_cast<size_t>(j)].hyT;
-      for (int r = 0; r < 6; ++r) {
-        const int v = fs.var[static_cast<size_t>(r)];
-        if (v >= 0) Cx_(v, fs.mesh) += sys_[static_cast<size_t>(j)].hxT(r);
-      }
-    }
-    return;
-  }
+// The coupling columns of the T_m: p = inf, H's blocks between T_m and the positions and auxiliaries; p = 2, the
+// objective cones' u_m on the e_j.
+CouplingColumns PrimalDualSolver::coupling_columns() const {
+  if (st_.p_inf) return newton_.face_coupling();
+  std::vector<double> u(static_cast<size_t>(nf_), 0.0);
   for (size_t m = 0; m < 2; ++m) {
     const ObjectiveCone& oc = obj_[m];
     for (size_t i = 0; i < oc.faces.size(); ++i) {
-      Cy_(kAux * oc.faces[i] + 3, static_cast<Eigen::Index>(m)) = u_obj_[m](static_cast<Eigen::Index>(i));
+      u[static_cast<size_t>(oc.faces[i])] = u_obj_[m](static_cast<Eigen::Index>(i));
     }
   }
-}
-
-// The 2 x 2 systems of the coupling, once Dcx, Dcy = P^-1 (Cx, Cy) are known.
-void PrimalDualSolver::finish_coupling() {
-  G_ = Cx_.transpose() * Dcx_ + Cy_.transpose() * Dcy_;
-  G_ = 0.5 * (G_ + G_.transpose());
-  if (st_.p_inf) {
-    // Bordered system [[P, Q], [Q^T, h_tt]]: its Schur complement on the two epigraph variables.
-    Sc_ = -G_;
-    Sc_(0, 0) += h_tt_[0];
-    Sc_(1, 1) += h_tt_[1];
-    return;
-  }
-  // H = [[P + U U^T, U K], [K U^T, diag(h_tt)]], U = [u_0 u_1], K = diag(kappa): Woodbury for P + U U^T
-  // (M = I + U^T P^-1 U >= I), then the 2 x 2 Schur complement in (dT_0, dT_1).
-  Minv_ = (Eigen::Matrix2d::Identity() + G_).inverse();
-  GM_ = G_ * Minv_;  // U^T A^-1 U, A = P + U U^T
-  for (int a = 0; a < 2; ++a) {
-    for (int b = 0; b < 2; ++b) {
-      Sc_(a, b) = (a == b ? h_tt_[static_cast<size_t>(a)] : 0.0) -
-                  kappa_[static_cast<size_t>(a)] * kappa_[static_cast<size_t>(b)] * GM_(a, b);
-    }
-  }
-}
-
-// Solves H d = r for the right-hand side r = (rx, ry, r_t) (positions, auxiliaries, T_m), given P^-1 (rx, ry).
-Unknowns PrimalDualSolver::finish_solve(Eigen::VectorXd pinv_rx, Eigen::VectorXd pinv_ry,
-                                        const std::array<double, 2>& r_t) const {
-  Unknowns d;
-  d.x = std::move(pinv_rx);
-  d.y = std::move(pinv_ry);
-  const Eigen::Vector2d ctd = Cx_.transpose() * d.x + Cy_.transpose() * d.y;  // C^T P^-1 r
-  if (st_.p_inf) {
-    const Eigen::Vector2d sol = Sc_.ldlt().solve(Eigen::Vector2d(r_t[0], r_t[1]) - ctd);
-    d.t = {sol(0), sol(1)};
-    d.x -= Dcx_ * sol;
-    d.y -= Dcy_ * sol;
-  } else {
-    const Eigen::Vector2d k(kappa_[0], kappa_[1]);
-    const Eigen::Vector2d uta = ctd - GM_ * ctd;  // U^T A^-1 r
-    const Eigen::Vector2d sol = Sc_.ldlt().solve(Eigen::Vector2d(r_t[0], r_t[1]) - k.cwiseProduct(uta));
-    d.t = {sol(0), sol(1)};
-    const Eigen::Vector2d coef = Minv_ * (ctd + k.cwiseProduct(sol));
-    d.x -= Dcx_ * coef;
-    d.y -= Dcy_ * coef;
-  }
-  if (!d.x.allFinite() || !d.y.allFinite() || !std::isfinite(d.t[0]) || !std::isfinite(d.t[1])) {
-    throw PipelineError("convex subproblem: the primal-dual step is not finite");
-  }
-  return d;
+  return newton_.rank_two_columns(kE - kC, [&](int j) { return u[static_cast<size_t>(j)]; });
 }
 
 Unknowns PrimalDualSolver::solve_newton(const Unknowns& r) const {
   Eigen::MatrixXd Dx, Dy;
-  apply_pinv<1>(r.x, r.y, Dx, Dy);
-  return finish_solve(Dx.col(0), Dy.col(0), r.t);
+  newton_.apply_pinv<1>(r.x, r.y, Dx, Dy);
+  return finite_step(coupled_->solve(Dx.col(0), Dy.col(0), r.t));
 }
 
 // H d = A^T W^-2 A d, formed cone by cone from the scalings (W^-1 applied twice), plus the unit rows of the unused
@@ -733,20 +625,15 @@ void PrimalDualSolver::apply_newton_matrix(const Unknowns& d, Unknowns& h) const
   const ConeVectors ds = slack_direction(d);
   ConeVectors V;
   V.faces = FaceRows::Zero(kRows, nf_);
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
-    const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    for (int k = 0; k < fc.n; ++k) {
-      const soc::Scaling<3>& w = fsys.w[static_cast<size_t>(k)];
-      if (fc.cone[static_cast<size_t>(k)].dim == 1) {
-        V.faces(3 * k, j) = ds.faces(3 * k, j) / (w.beta * w.beta);
-      } else {
-        const Eigen::Vector3d dsk = ds.faces.col(j).segment<3>(3 * k);
-        V.faces.col(j).segment<3>(3 * k) = soc::apply_w_inverse<3>(w, soc::apply_w_inverse<3>(w, dsk));
-      }
+  for_each_cone([&](int j, int k, int dim) {
+    const soc::Scaling<3>& w = scal_[static_cast<size_t>(j)].w[static_cast<size_t>(k)];
+    if (dim == 1) {
+      V.faces(3 * k, j) = ds.faces(3 * k, j) / (w.beta * w.beta);
+    } else {
+      const Eigen::Vector3d dsk = ds.faces.col(j).segment<3>(3 * k);
+      V.faces.col(j).segment<3>(3 * k) = soc::apply_w_inverse<3>(w, soc::apply_w_inverse<3>(w, dsk));
     }
-  }
+  });
   if (!st_.p_inf) {
     for (size_t m = 0; m < 2; ++m) {
       V.objective[m] = soc::apply_w_inverse(w_obj_[m], soc::apply_w_inverse(w_obj_[m], ds.objective[m]));
@@ -805,25 +692,20 @@ Unknowns PrimalDualSolver::right_hand_side(const ConeVectors& xi, const Iteratio
   U.faces.setZero(kRows, nf_);
   ConeVectors V;
   V.faces = FaceRows::Zero(kRows, nf_);
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
-    for (int k = 0; k < fc.n; ++k) {
-      const int dim = fc.cone[static_cast<size_t>(k)].dim;
-      if (dim == 1) {
-        const double lam = fsys.lambda(3 * k);
-        const double u = xi.faces(3 * k, j) / lam - lam;
-        U.faces(3 * k, j) = u;
-        V.faces(3 * k, j) = u / fsys.w[static_cast<size_t>(k)].beta;
-      } else {
-        const Eigen::Vector3d lam = fsys.lambda.segment<3>(3 * k);
-        const Eigen::Vector3d u = soc::jordan_divide<3>(lam, xi.faces.col(j).segment<3>(3 * k)) - lam;
-        U.faces.col(j).segment<3>(3 * k) = u;
-        V.faces.col(j).segment<3>(3 * k) = soc::apply_w_inverse(fsys.w[static_cast<size_t>(k)], u);
-      }
+  for_each_cone([&](int j, int k, int dim) {
+    const FaceScaling& fsys = scal_[static_cast<size_t>(j)];
+    if (dim == 1) {
+      const double lam = fsys.lambda(3 * k);
+      const double u = xi.faces(3 * k, j) / lam - lam;
+      U.faces(3 * k, j) = u;
+      V.faces(3 * k, j) = u / fsys.w[static_cast<size_t>(k)].beta;
+    } else {
+      const Eigen::Vector3d lam = fsys.lambda.segment<3>(3 * k);
+      const Eigen::Vector3d u = soc::jordan_divide<3>(lam, xi.faces.col(j).segment<3>(3 * k)) - lam;
+      U.faces.col(j).segment<3>(3 * k) = u;
+      V.faces.col(j).segment<3>(3 * k) = soc::apply_w_inverse(fsys.w[static_cast<size_t>(k)], u);
     }
-  }
+  });
   if (!st_.p_inf) {
     for (size_t m = 0; m < 2; ++m) {
       U.objective[m] = soc::jordan_divide(lambda_obj_[m], xi.objective[m]) - lambda_obj_[m];
@@ -841,35 +723,30 @@ Unknowns PrimalDualSolver::right_hand_side(const ConeVectors& xi, const Iteratio
 
 // The predictor: H d = r, solved together with P^-1 applied to the coupling columns (one solve with P for both).
 Unknowns PrimalDualSolver::affine_direction(const Unknowns& r, double refined_enough) {
-  coupling_columns();
+  CouplingColumns C = coupling_columns();
   Eigen::MatrixXd Rx(nv_, 3), Ry(kAux * nf_, 3), Dx, Dy;
-  Rx << Cx_, r.x;
-  Ry << Cy_, r.y;
-  apply_pinv<3>(Rx, Ry, Dx, Dy);
-  Dcx_ = Dx.leftCols<2>();
-  Dcy_ = Dy.leftCols<2>();
-  finish_coupling();
-  return refine(finish_solve(Dx.col(2), Dy.col(2), r.t), r, refined_enough);
+  Rx << C.x, r.x;
+  Ry << C.y, r.y;
+  newton_.apply_pinv<3>(Rx, Ry, Dx, Dy);
+  CouplingColumns pinv_c{Dx.leftCols<2>(), Dy.leftCols<2>()};
+  coupled_ = st_.p_inf ? CoupledSolve::bordered(std::move(C), std::move(pinv_c), h_tt_)
+                       : CoupledSolve::rank_two(std::move(C), std::move(pinv_c), h_tt_, kappa_);
+  return refine(finite_step(coupled_->solve(Dx.col(2), Dy.col(2), r.t)), r, refined_enough);
 }
 
 // The corrector's target xi = sigma mu e - ds~_a o dz~_a (Mehrotra).
 ConeVectors PrimalDualSolver::corrector_target(const ScaledDirection& aff, double sigma, double mu) const {
   ConeVectors xi;
   xi.faces = FaceRows::Zero(kRows, nf_);
-#pragma omp parallel for schedule(static) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    for (int k = 0; k < fc.n; ++k) {
-      const int dim = fc.cone[static_cast<size_t>(k)].dim;
-      if (dim == 1) {
-        xi.faces(3 * k, j) = sigma * mu - aff.ds.faces(3 * k, j) * aff.dz.faces(3 * k, j);
-      } else {
-        xi.faces.col(j).segment<3>(3 * k) =
-            -soc::jordan_product<3>(aff.ds.faces.col(j).segment<3>(3 * k), aff.dz.faces.col(j).segment<3>(3 * k));
-        xi.faces(3 * k, j) += sigma * mu;
-      }
+  for_each_cone([&](int j, int k, int dim) {
+    if (dim == 1) {
+      xi.faces(3 * k, j) = sigma * mu - aff.ds.faces(3 * k, j) * aff.dz.faces(3 * k, j);
+    } else {
+      xi.faces.col(j).segment<3>(3 * k) =
+          -soc::jordan_product<3>(aff.ds.faces.col(j).segment<3>(3 * k), aff.dz.faces.col(j).segment<3>(3 * k));
+      xi.faces(3 * k, j) += sigma * mu;
     }
-  }
+  });
   if (!st_.p_inf) {
     for (size_t m = 0; m < 2; ++m) {
       xi.objective[m] = -soc::jordan_product(aff.ds.objective[m], aff.dz.objective[m]);
@@ -888,7 +765,7 @@ double PrimalDualSolver::step_to_boundary(const Unknowns& d, const ConeVectors& 
   double amax = kInf;
 #pragma omp parallel for schedule(static) reduction(min : amax) if (nf_ > kParallelFaces)
   for (int j = 0; j < nf_; ++j) {
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+    const FaceScaling& fsys = scal_[static_cast<size_t>(j)];
     const FaceCones& fc = cones_[static_cast<size_t>(j)];
     for (int k = 0; k < fc.n; ++k) {
       if (fc.cone[static_cast<size_t>(k)].dim == 1) {
@@ -927,7 +804,7 @@ bool PrimalDualSolver::dual_step(const ScaledDirection& sc, double step, Iterate
 #pragma omp parallel for schedule(static) reduction(min : ok) if (nf_ > kParallelFaces)
   for (int j = 0; j < nf_; ++j) {
     const FaceCones& fc = cones_[static_cast<size_t>(j)];
-    const FaceSystem& fsys = sys_[static_cast<size_t>(j)];
+    const FaceScaling& fsys = scal_[static_cast<size_t>(j)];
     for (int k = 0; k < fc.n; ++k) {
       const int dim = fc.cone[static_cast<size_t>(k)].dim;
       const soc::Scaling<3>& w = fsys.w[static_cast<size_t>(k)];

@@ -44,10 +44,8 @@ namespace {
 // CHOLMOD's factorisations only.
 class SerialBlas {
  public:
-  SerialBlas();
+  SerialBlas();  // not copyable: lock_ is not
   ~SerialBlas();
-  SerialBlas(const SerialBlas&) = delete;
-  SerialBlas& operator=(const SerialBlas&) = delete;
 
  private:
   static std::mutex& process_lock();

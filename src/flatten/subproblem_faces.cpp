@@ -141,24 +141,4 @@ AssemblyStructure& assembly_structure(const Setup& s, SparseCholesky& cholesky, 
   return cache;
 }
 
-void clear_values(Pattern& pattern) {
-  double* values = pattern.A.valuePtr();
-  const Eigen::Index n_values = pattern.A.nonZeros();
-#pragma omp parallel for schedule(static) if (n_values > 100000)
-  for (Eigen::Index k = 0; k < n_values; ++k) values[k] = 0;
-}
-
-bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift) {
-  if (last_shift == 0 && cholesky.factorize(A)) return true;
-  const Eigen::VectorXd diag = A.diagonal();
-  for (double shift = std::max(1e-14, 1e-2 * last_shift); shift < 1e3; shift *= 100) {
-    for (Eigen::Index v = 0; v < A.rows(); ++v) A.coeffRef(v, v) = diag(v) * (1 + shift);
-    if (cholesky.factorize(A)) {
-      last_shift = shift;
-      return true;
-    }
-  }
-  return false;
-}
-
 }  // namespace liftmap::subproblem

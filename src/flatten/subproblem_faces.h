@@ -1,7 +1,8 @@
 #pragma once
 /// The per-face data of the convex subproblem (10), shared by its two solvers (barrier_solver.cpp,
 /// primal_dual_solver.cpp): each face's corner map, rotation and area, where its corners live in the unknowns,
-/// and the sparsity pattern of the Schur system in the vertex coordinates that both solvers factorise.
+/// and the sparsity pattern of the Schur system in the vertex coordinates that both solvers factorise
+/// (newton_system.h).
 
 #include <omp.h>
 
@@ -79,17 +80,6 @@ Pattern make_pattern(const Setup& s);
 /// diagonal is stored even for an unknown of no face.
 Pattern make_pattern(const std::vector<std::array<int, 6>>& var, int n_var);
 
-/// The rows of a face's six corner coordinates in X (#unknowns by NC); those of the fixed gauge vertex are 0.
-template <int NC>
-Eigen::Matrix<double, 6, NC> gather_corners(const FaceSetup& fs, const Eigen::MatrixXd& X) {
-  Eigen::Matrix<double, 6, NC> out = Eigen::Matrix<double, 6, NC>::Zero();
-  for (int r = 0; r < 6; ++r) {
-    const int v = fs.var[static_cast<size_t>(r)];
-    if (v >= 0) out.row(r) = X.row(v);
-  }
-  return out;
-}
-
 /// The faces in three lists for sums over faces into the Schur system and vectors over the unknowns, which faces
 /// sharing a vertex would race on: lists[h] holds the faces whose unknowns all lie in half h of the factorisation's
 /// split (SparseCholesky::unknown_halves; no face couples the two halves), lists[2] the others (a vertex in the
@@ -125,43 +115,6 @@ void for_each_face_partitioned(const FacePartition& p, Fn&& fn) {
   }
   for (const int j : p.lists[2]) fn(j, 2);
 }
-
-/// Sets the values of the Schur system's stored entries to 0 (on two threads for large systems).
-void clear_values(Pattern& pattern);
-
-/// Adds a face's 6 x 6 corner block K into the Schur system's values at its entries `index` (Pattern::index).
-inline void add_corner_block(double* values, const std::array<int, 36>& index, const Mat6& K) {
-  for (int r = 0; r < 6; ++r) {
-    for (int c = 0; c < 6; ++c) {
-      const int i = index[static_cast<size_t>(6 * r + c)];
-      if (i >= 0) values[i] += K(r, c);
-    }
-  }
-}
-
-/// X.row(v) -= rows[j].row(r) for every corner coordinate r (unknown v) of every face j.
-template <int NC>
-void subtract_corner_rows(const Setup& s, const FacePartition& p, const std::vector<Eigen::Matrix<double, 6, NC>>& rows,
-                          Eigen::MatrixXd& X) {
-  for_each_face_partitioned(p, [&](int j, int /*list*/) {
-    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-    for (int r = 0; r < 6; ++r) {
-      const int v = fs.var[static_cast<size_t>(r)];
-      if (v >= 0) X.row(v) -= rows[static_cast<size_t>(j)].row(r);
-    }
-  });
-}
-
-/// Factorises the Schur system A. Rounding in the eliminated blocks of nearly active constraints can make it
-/// numerically indefinite late in a solve: then its diagonal is shifted, relative to each entry (the curvatures span
-/// many orders of magnitude), by 1e-2 times the shift that worked last time (at least 1e-14), growing 100-fold per
-/// attempt (each a full factorisation). Any positive definite matrix still gives a descent direction, and the
-/// solvers' steps keep the iterate feasible. Leaves A shifted if it was.
-/// Once a solve has needed a shift, the unshifted attempt is skipped: the systems stay indefinite from then on, and
-/// the floor of 1e-14 relative is below the factorisation's own rounding.
-/// \param last_shift in: the last successful shift (0: none needed so far); out: this one's
-/// \return false if no shift below 1e3 makes it factorise (the limit of double precision).
-bool factorize_with_shift(SparseCholesky& cholesky, Eigen::SparseMatrix<double>& A, double& last_shift);
 
 /// What both solvers hold of one solve: its settings, the factorisation, the per-face data (checked against the
 /// start X0), the Newton system's assembly structure (the cache's, or its own), and the result being built.

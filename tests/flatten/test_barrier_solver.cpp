@@ -12,6 +12,7 @@
 #include "disk_patches.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/joint_flatten.h"
+#include "flatten/newton_system.h"
 #include "flatten/sparse_cholesky.h"
 #include "flatten/subproblem_faces.h"
 
