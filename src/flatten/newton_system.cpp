@@ -127,12 +127,9 @@ CoupledSolve::CoupledSolve(CouplingColumns C, CouplingColumns pinv_c, const std:
 
 CoupledSolve CoupledSolve::bordered(CouplingColumns C, CouplingColumns pinv_c, const std::array<double, 2>& h) {
   CoupledSolve cs(std::move(C), std::move(pinv_c), h);
-  for (int a = 0; a < 2; ++a) {
-    for (int b = 0; b < 2; ++b) {
-      cs.schur_(a, b) = (a == b ? h[static_cast<size_t>(a)] : 0.0) - cs.C_.x.col(a).dot(cs.pinv_c_.x.col(b)) -
-                        cs.C_.y.col(a).dot(cs.pinv_c_.y.col(b));
-    }
-  }
+  cs.schur_ = -cs.gram();
+  cs.schur_(0, 0) += h[0];
+  cs.schur_(1, 1) += h[1];
   return cs;
 }
 
@@ -141,13 +138,7 @@ CoupledSolve CoupledSolve::rank_two(CouplingColumns C, CouplingColumns pinv_c, c
   CoupledSolve cs(std::move(C), std::move(pinv_c), h);
   cs.rank_two_ = true;
   cs.kappa_ = Eigen::Vector2d(kappa[0], kappa[1]);
-  Eigen::Matrix2d G;  // C^T P^-1 C
-  for (int a = 0; a < 2; ++a) {
-    for (int b = 0; b < 2; ++b) {
-      G(a, b) = cs.C_.x.col(a).dot(cs.pinv_c_.x.col(b)) + cs.C_.y.col(a).dot(cs.pinv_c_.y.col(b));
-    }
-  }
-  G = 0.5 * (G + G.transpose());
+  const Eigen::Matrix2d G = cs.gram();
   cs.Minv_ = (Eigen::Matrix2d::Identity() + G).inverse();
   cs.GM_ = G * cs.Minv_;
   for (int a = 0; a < 2; ++a) {
@@ -158,27 +149,29 @@ CoupledSolve CoupledSolve::rank_two(CouplingColumns C, CouplingColumns pinv_c, c
   return cs;
 }
 
+// Symmetrised into a new matrix: in place, G = 0.5 * (G + G^T) aliases (Eigen assigns a fixed 2 x 2 coefficient by
+// coefficient, so G(1, 0) read the already averaged G(0, 1)), which both solvers' own copies of this solve did.
+Eigen::Matrix2d CoupledSolve::gram() const {
+  const Eigen::Matrix2d G = C_.x.transpose() * pinv_c_.x + C_.y.transpose() * pinv_c_.y;
+  return 0.5 * (G + G.transpose());
+}
+
 NewtonVector CoupledSolve::solve(Eigen::VectorXd pinv_rx, Eigen::VectorXd pinv_ry,
                                  const std::array<double, 2>& r_t) const {
   NewtonVector d;
   d.x = std::move(pinv_rx);
   d.y = std::move(pinv_ry);
-  Eigen::Vector2d rhs;
+  const Eigen::Vector2d ctr = C_.x.transpose() * d.x + C_.y.transpose() * d.y;  // C^T P^-1 r
+  const Eigen::Vector2d rt(r_t[0], r_t[1]);
   if (!rank_two_) {
-    for (int a = 0; a < 2; ++a) {
-      rhs(a) = r_t[static_cast<size_t>(a)] - C_.x.col(a).dot(d.x) - C_.y.col(a).dot(d.y);
-    }
-    const Eigen::Vector2d sol = schur_.ldlt().solve(rhs);
+    const Eigen::Vector2d sol = schur_.ldlt().solve(rt - ctr);
     d.t = {sol(0), sol(1)};
     d.x -= pinv_c_.x * sol;
     d.y -= pinv_c_.y * sol;
     return d;
   }
-  Eigen::Vector2d ctr;  // C^T P^-1 r
-  for (int a = 0; a < 2; ++a) ctr(a) = C_.x.col(a).dot(d.x) + C_.y.col(a).dot(d.y);
   const Eigen::Vector2d cta = ctr - GM_ * ctr;  // C^T A^-1 r
-  for (int a = 0; a < 2; ++a) rhs(a) = r_t[static_cast<size_t>(a)] - kappa_(a) * cta(a);
-  const Eigen::Vector2d sol = schur_.ldlt().solve(rhs);
+  const Eigen::Vector2d sol = schur_.ldlt().solve(rt - kappa_.cwiseProduct(cta));
   d.t = {sol(0), sol(1)};
   const Eigen::Vector2d coef = Minv_ * (ctr + kappa_.cwiseProduct(sol));
   d.x -= pinv_c_.x * coef;

@@ -302,7 +302,7 @@ class CoupledSolve {
 
  private:
   CoupledSolve(CouplingColumns C, CouplingColumns pinv_c, const std::array<double, 2>& h);
-  [[nodiscard]] Eigen::Vector2d coupling_dot(const Eigen::VectorXd& px, const Eigen::VectorXd& py) const;
+  [[nodiscard]] Eigen::Matrix2d gram() const;  // C^T P^-1 C, symmetrised
 
   CouplingColumns C_, pinv_c_;
   std::array<double, 2> h_{0, 0};
