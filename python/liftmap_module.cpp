@@ -72,18 +72,19 @@ Map map_arrays(const py::handle& VA, const py::handle& FA, const py::handle& VB,
                int max_iterations, const std::string& solver, const std::string& tree, int samples,
                std::optional<int> threads, bool fix_orientation, const py::object& progress, const std::string& name_a,
                const std::string& name_b, bool accept_unverified, int start_relaxation) {
-  const MapKeywords k{{norm_name(p), h, solver, tree},
-                      normalize,
-                      tolerance,
-                      max_iterations,
-                      samples,
-                      threads,
-                      fix_orientation,
-                      progress,
-                      name_a,
-                      name_b,
-                      accept_unverified,
-                      start_relaxation};
+  MapKeywords k;
+  k.arguments.choices = {norm_name(p), h, solver, tree};
+  k.arguments.normalize = normalize;
+  k.arguments.tolerance = tolerance;
+  k.arguments.max_iterations = max_iterations;
+  k.arguments.samples = samples;
+  k.arguments.threads = threads;
+  k.arguments.fix_orientation = fix_orientation;
+  k.arguments.start_relaxation = start_relaxation;
+  k.progress = progress;
+  k.name_a = name_a;
+  k.name_b = name_b;
+  k.accept_unverified = accept_unverified;
   return compute_map(VA, FA, VB, FB, landmarks, k);
 }
 
