@@ -10,7 +10,6 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
-#include <new>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -24,6 +23,7 @@
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
+#include "map/batch.h"
 #include "map/map_arguments.h"
 #include "map/map_files.h"
 #include "map/map_meshes.h"
@@ -134,7 +134,7 @@ std::string default_text(const liftmap::MapArguments& args, const std::string& n
   return {};
 }
 
-/// The options of a map (map_argument_specs: all for `map`, those of `cut` for `cut`), each value checked
+/// The options of a map (map_argument_specs: all for `map` and `batch`, those of `cut` for `cut`), each value checked
 /// by the library's parser when the command line is parsed, before any file is read.
 void add_map_arguments(CLI::App* cmd, liftmap::MapArguments& args, bool cut_only) {
   for (const liftmap::MapArgumentSpec& spec : liftmap::map_argument_specs()) {
@@ -233,6 +233,60 @@ int run_cut(const PairJob& job) {
   return liftmap::kExitOk;
 }
 
+/// `liftmap batch`: the manifest, the output folder and the map options every pair starts from.
+struct BatchJob {
+  std::string manifest, out_dir, shard = "0/1";
+  int jobs = 1;
+  liftmap::MapArguments args;
+  bool quiet = false;
+};
+
+void add_batch_options(CLI::App* cmd, BatchJob& job) {
+  cmd->add_option("MANIFEST", job.manifest,
+                  "CSV with a header: mesh_a,mesh_b,landmarks[,name][,options of map...], one pair per line; "
+                  "relative paths from the manifest's folder")
+      ->required();
+  cmd->add_option("-o,--out", job.out_dir, "Output folder: OUT/<name>/ per pair, OUT/summary.csv")->required();
+  cmd->add_option("--shard", job.shard, "Map every n-th pair from the i-th (0-based), i/n, e.g. $SLURM_ARRAY_TASK_ID/8")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            try {
+              liftmap::parse_shard(value);
+            } catch (const liftmap::UsageError&) {
+              return "'" + value + "' is not i/n with 0 <= i < n";
+            }
+            return std::string();
+          },
+          "i/n"))
+      ->capture_default_str();
+  cmd->add_option("--jobs", job.jobs, "Pairs mapped at once, the threads divided between them")
+      ->check(CLI::Range(1, liftmap::MapOptionLimits::max_threads()))
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
+  add_map_arguments(cmd, job.args, false);
+  cmd->get_option("--threads")
+      ->description("Threads of all maps together, divided between the --jobs (default: all hardware threads)");
+}
+
+int run_batch(const BatchJob& job) {
+  liftmap::map_options(job.args);  // the batch's own options, checked before the manifest is read
+  const std::vector<liftmap::BatchPair> pairs = liftmap::read_manifest(job.manifest, job.args);
+  liftmap::BatchOptions options;
+  options.shard = liftmap::parse_shard(job.shard);
+  options.jobs = job.jobs;
+  options.threads = job.args.threads;
+  options.warning = print_warning;
+  if (!job.quiet) options.progress = [](const std::string& line) { std::cerr << "liftmap: batch: " << line << '\n'; };
+  const liftmap::BatchResult r = liftmap::run_batch(pairs, job.out_dir, options);
+  const liftmap::BatchCounts& s = r.summary;
+  std::printf(
+      "liftmap: batch: %d pairs in %s/summary.csv: %d ok, %d failed, %d pending; shard %s: %d pairs, %d mapped now, "
+      "%d complete before, %d failed\n",
+      s.pairs, job.out_dir.c_str(), s.ok, s.failed, s.pending, job.shard.c_str(), r.shard_pairs, r.mapped, r.skipped,
+      r.shard_failed);
+  return r.shard_failed > 0 ? liftmap::kExitBatchFailures : liftmap::kExitOk;
+}
+
 struct TransferJob {
   std::string map_path, onto_path, data_path, connectivity_path, out_path;
 };
@@ -321,6 +375,11 @@ int run(int argc, char** argv) {
   add_pair_options(cut, cut_job);
   add_map_arguments(cut, cut_job.args, true);
 
+  BatchJob batch_job;
+  CLI::App* batch = app.add_subcommand(
+      "batch", "Map every pair of a manifest into OUT/<name>/ as `map` does: resumable, sharded, several at once");
+  add_batch_options(batch, batch_job);
+
   TransferJob transfer_job;
   CLI::App* transfer = app.add_subcommand("transfer", "Carry data from one mesh to the other through a map file");
   transfer->require_subcommand(1);
@@ -364,6 +423,7 @@ int run(int argc, char** argv) {
   if (*transfer_attributes) return run_transfer_attributes(transfer_job);
   if (*transfer_mesh) return run_transfer_mesh(transfer_job);
   if (*eval) return run_eval(eval_map, eval_truth, eval_target);
+  if (*batch) return run_batch(batch_job);
   for (auto [cmd, job] : {std::pair{map, &map_job}, std::pair{cut, &cut_job}}) {
     if (!*cmd) continue;
     if (job->args.threads) omp_set_num_threads(*job->args.threads);
@@ -379,25 +439,10 @@ int main(int argc, char** argv) {
     // The executable owns its process: OpenBLAS's pool (pthreads build only) at one thread during factorisations.
     liftmap::SparseCholesky::limit_openblas_pool(true);
     return run(argc, argv);
-  } catch (const liftmap::UsageError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitUsage;
-  } catch (const liftmap::IoError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitIo;
-  } catch (const liftmap::InvalidInputError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitInvalidInput;
-  } catch (const liftmap::PipelineError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitPipeline;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "liftmap: out of memory\n";
-    return liftmap::kExitInternal;
-  } catch (const std::exception& e) {
-    std::cerr << "liftmap: internal error: " << e.what() << '\n';
-    return liftmap::kExitInternal;
   } catch (...) {
-    return liftmap::kExitInternal;
+    std::string message;
+    const int code = liftmap::exit_code_of(std::current_exception(), message);
+    std::cerr << "liftmap: " << message << '\n';
+    return code;
   }
 }
