@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arrays.h"
+#include "batch_functions.h"
 #include "check/check_mesh.h"
 #include "core/errors.h"
 #include "io/landmarks.h"
@@ -205,6 +206,7 @@ PYBIND11_MODULE(liftmap, m) {
       "liftmap: continuous, bijective, low-distortion maps between two closed genus-0 triangle meshes from "
       "landmarks (Aigerman, Poranne, Lipman: Lifted Bijections for Low Distortion Surface Mappings, 2014).";
   register_exceptions(m);
+  bind_batch(m);
   bind_vertex_map(m);
   bind_map(m);
   m.def("read_mesh", &read_mesh_arrays, "path"_a, R"(read_mesh(path) -> (V, F)
