@@ -206,6 +206,15 @@ void remove_leftovers(const fs::path& dir) {
   }
 }
 
+/// Removes the temporary files of OutputFile whose names start with `prefix` (".NAME.tmp-") from `dir`: what a killed
+/// writer left. Only for files no other process writes at the same time.
+void remove_temporary_files(const fs::path& dir, const std::string& prefix) {
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove(e.path(), ec);
+  }
+}
+
 /// An exclusive flock(2) on a file, held while the object lives.
 class FileLock {
  public:
@@ -430,6 +439,7 @@ PairOutcome run_batch_pair(const BatchPair& pair, const std::string& out_dir, co
   std::error_code ec;
   fs::remove(record, ec);  // a previous failure's: the pair is retried
   remove_leftovers(dir);
+  remove_temporary_files(fs::path(out_dir) / kRecordFolder, "." + pair.name + ".json.tmp-");
   const auto t0 = Clock::now();
   PairOutcome o;
   try {
@@ -474,11 +484,7 @@ BatchCounts write_batch_summary(const std::vector<BatchPair>& pairs, const std::
     }
     text += std::string(",") + (o->verified ? "yes" : "no") + ',' + csv_field(o->message) + '\n';
   }
-  // Temporary files of a writer that was killed while it held the lock.
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(out_dir, ec)) {
-    if (e.path().filename().string().rfind(".summary.csv.tmp-", 0) == 0) fs::remove(e.path(), ec);
-  }
+  remove_temporary_files(out_dir, ".summary.csv.tmp-");  // of a writer killed while it held the lock
   OutputFile file((fs::path(out_dir) / "summary.csv").string());
   std::fputs(text.c_str(), file.get());
   file.close();
