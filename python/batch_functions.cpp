@@ -120,6 +120,8 @@ void bind_batch(py::module_& m) {
         "Rewrites out/summary.csv from the pairs' records; returns the counts of its rows.");
   m.def("_threads_per_job", &threads_per_job, "threads"_a, "jobs"_a,
         "Threads per map when `jobs` maps run at once in this process.");
+  py::options signature_in_doc;  // the lambda's (*args, **kwargs) would hide the documented signature
+  signature_in_doc.disable_function_signatures();
   m.def(
       "batch",
       [](const py::args& args, const py::kwargs& kwargs) {
