@@ -560,22 +560,23 @@ BatchResult run_batch(const std::vector<BatchPair>& pairs, const std::string& ou
       std::unique_lock<std::mutex> lock(mutex);
       finished_one.wait(lock, [&] { return !finished.empty() || error; });
       if (finished.empty()) break;
-      const Finished f = std::move(finished.front());
+      const Finished f = finished.front();
       finished.pop_front();
-      lock.unlock();
       ++done;
       ++result.mapped;
       const bool failed = f.outcome.status == PairStatus::kFailed;
       failed_now += failed ? 1 : 0;
       result.shard_failed += failed ? 1 : 0;
+      // Under the lock: a line never interleaves with a worker's warning.
       say(progress_line(pairs[f.index].name, f.outcome, static_cast<size_t>(result.skipped) + done, shard.size(),
                         failed_now, seconds_since(t0), done, todo.size()));
+      lock.unlock();
       if (seconds_since(last_summary) >= kSummarySeconds) {
         write_batch_summary(pairs, out_dir);
         last_summary = Clock::now();
       }
     }
-  } catch (...) {  // the summary could not be written: let the workers finish their pairs, then report
+  } catch (...) {  // the summary could not be written: the workers finish the pairs they map, then it is reported
     stop = true;
     for (std::thread& t : workers) t.join();
     throw;
