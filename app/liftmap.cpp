@@ -5,15 +5,12 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
-#include <new>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +23,9 @@
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
+#include "map/batch.h"
+#include "map/map_arguments.h"
+#include "map/map_files.h"
 #include "map/map_meshes.h"
 #include "map/transfer.h"
 #include "map/write_map.h"
@@ -114,17 +114,6 @@ int run_check(const std::vector<std::string>& paths, const std::string& landmark
   return code;
 }
 
-/// A finite number > 0 (CLI::PositiveNumber lets nan and inf through).
-const CLI::Validator kFinitePositive(
-    [](std::string& s) {
-      double x = 0;
-      if (!CLI::detail::lexical_cast(s, x) || !std::isfinite(x) || x <= 0) {
-        return "value " + s + " is not a finite number > 0";
-      }
-      return std::string();
-    },
-    "FINITE > 0");
-
 /// Usage errors in the form of every other message: one line starting with `liftmap:`.
 std::string usage_message(const CLI::App* app, const CLI::Error& e) {
   std::string command = app->get_name();
@@ -132,14 +121,51 @@ std::string usage_message(const CLI::App* app, const CLI::Error& e) {
   return "liftmap: " + std::string(e.what()) + " (see '" + command + " --help')\n";
 }
 
+/// The text of an option's default in --help; empty if it has none to show.
+std::string default_text(const liftmap::MapArguments& args, const std::string& name) {
+  if (name == "p") return args.choices.p;
+  if (name == "h") return args.choices.h;
+  if (name == "solver") return args.choices.solver;
+  if (name == "tree") return args.choices.tree;
+  if (name == "tolerance") return liftmap::figure(args.tolerance);
+  if (name == "max_iterations") return std::to_string(args.max_iterations);
+  if (name == "start_relaxation") return std::to_string(args.start_relaxation);
+  if (name == "samples") return std::to_string(args.samples);
+  return {};
+}
+
+/// The options of a map (map_argument_specs: all for `map` and `batch`, those of `cut` for `cut`), each value checked
+/// by the library's parser when the command line is parsed, before any file is read.
+void add_map_arguments(CLI::App* cmd, liftmap::MapArguments& args, bool cut_only) {
+  for (const liftmap::MapArgumentSpec& spec : liftmap::map_argument_specs()) {
+    if (cut_only && !spec.in_cut) continue;
+    const std::string name = spec.name;
+    if (spec.is_flag) {
+      // --no-normalize is the name "normalize" negated; the other flags set their option.
+      const std::string value = spec.flag == "--no-" + name ? "false" : "true";
+      cmd->add_flag_callback(
+          spec.flag, [&args, name, value] { liftmap::set_map_argument(args, name, value); }, spec.help);
+      continue;
+    }
+    const CLI::Validator check(
+        [name](std::string& value) {
+          liftmap::MapArguments scratch;
+          return liftmap::set_map_argument_text(scratch, name, value);
+        },
+        "");
+    CLI::Option* option = cmd->add_option_function<std::string>(
+        spec.flag, [&args, name](const std::string& value) { liftmap::set_map_argument(args, name, value); },
+        spec.help);
+    option->check(check)->type_name(spec.type);
+    if (const std::string d = default_text(args, name); !d.empty()) option->default_str(d);
+  }
+}
+
 /// Inputs and options shared by `map` and `cut`.
 struct PairJob {
   std::string path_a, path_b, landmarks_path, out_dir = "out";
-  std::string p = "2", h = "eq3", tree = "mst", solver = "auto";
-  bool no_normalize = false, quiet = false, fix_orientation = false;
-  double tolerance = 1e-3;
-  int max_iterations = 10, threads = 0, samples = 2;
-  int start_relaxation = liftmap::JointStartRelaxationOptions{}.newton.max_iterations;
+  liftmap::MapArguments args;
+  bool quiet = false;
 };
 
 void add_pair_options(CLI::App* cmd, PairJob& job) {
@@ -147,72 +173,24 @@ void add_pair_options(CLI::App* cmd, PairJob& job) {
   cmd->add_option("B", job.path_b, "Mesh B")->required();
   cmd->add_option("-l,--landmarks", job.landmarks_path, "Landmark file: 'iA iB' per line")->required();
   cmd->add_option("-o,--out", job.out_dir, "Output folder (created if missing)")->capture_default_str();
-  cmd->add_option("--tree", job.tree, "Cut tree: mst (paper) or path (through all landmarks)")
-      ->check(CLI::IsMember({"mst", "path"}))
-      ->capture_default_str();
   cmd->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
-  cmd->add_flag("--fix-orientation", job.fix_orientation,
-                "Reverse the faces of an inside-out mesh (negative signed volume) with a warning, instead of "
-                "rejecting it");
-  cmd->add_option("--threads", job.threads,
-                  "Threads for the per-face work, 1 to 4 per hardware thread (default: all hardware threads)")
-      ->check(CLI::Range(1, liftmap::MapOptionLimits::max_threads()));
 }
 
-/// --fix-orientation: reverses the faces of a mesh whose signed volume is negative, with a warning. Whether
-/// the mesh is mappable otherwise is left to the one validation that follows.
-bool fix_orientation(liftmap::TriangleMesh& mesh, const std::string& path) {
-  const std::optional<double> volume = liftmap::reverse_if_inside_out(mesh.V, mesh.F);
-  if (!volume) return false;
-  std::cerr << "liftmap: warning: " << path << " is inside-out (signed volume " << liftmap::figure(*volume)
-            << "): its faces are reversed (--fix-orientation); map files into it keep the vertex order of its file\n";
-  return true;
-}
+void print_warning(const std::string& message) { std::cerr << "liftmap: warning: " << message << '\n'; }
 
-/// Reads the inputs of `map` or `cut` and prepares the output folder for the files of `map` (which include
-/// those of `cut`: a `cut` into a map's folder removes the map's files too, so the folder never mixes two runs).
-/// The meshes are validated later, once, by map_meshes or run_cut.
-liftmap::MapInputs read_inputs(const PairJob& job) {
-  liftmap::MapInputs in{job.path_a, job.path_b, {}, {}, {}, false, false};
-  in.a = liftmap::read_mesh(job.path_a);
-  in.b = liftmap::read_mesh(job.path_b);
-  in.landmarks =
-      liftmap::read_landmarks(job.landmarks_path, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
-  if (job.fix_orientation) {
-    in.reversed_a = fix_orientation(in.a, job.path_a);
-    in.reversed_b = fix_orientation(in.b, job.path_b);
-  }
-  liftmap::prepare_output_folder(job.out_dir, liftmap::map_output_names(),
-                                 {job.path_a, job.path_b, job.landmarks_path});
-  return in;
-}
-
-liftmap::MapOptions map_options(const PairJob& job) {
-  liftmap::MapOptions o;
-  liftmap::set_map_choices(o, {job.p, job.h, job.solver, job.tree});
-  o.flatten.normalize_area = !job.no_normalize;
-  o.flatten.relative_tolerance = job.tolerance;
-  o.flatten.max_iterations = job.max_iterations;
-  o.flatten.joint_start.newton.max_iterations = job.start_relaxation;
-  o.distortion_samples_per_edge = job.samples;
-  o.name_a = job.path_a;
-  o.name_b = job.path_b;
-  if (!job.quiet) {
-    const auto t0 = std::chrono::steady_clock::now();
-    o.progress = [t0](const std::string& stage, const std::string& message) {
-      const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::fprintf(stderr, "[%7.2f s] %-8s %s\n", t, stage.c_str(), message.c_str());
-    };
-  }
-  return o;
+/// Progress lines of the pipeline on stderr, timed from now; empty if quiet.
+std::function<void(const std::string&, const std::string&)> progress_printer(bool quiet) {
+  if (quiet) return {};
+  const auto t0 = std::chrono::steady_clock::now();
+  return [t0](const std::string& stage, const std::string& message) {
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "[%7.2f s] %-8s %s\n", t, stage.c_str(), message.c_str());
+  };
 }
 
 int run_map(const PairJob& job) {
-  const liftmap::MapInputs in = read_inputs(job);
-  const liftmap::MapOptions options = map_options(job);
-  const liftmap::MapResult map =
-      liftmap::map_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options);
-  liftmap::write_map_folder(job.out_dir, map, in, liftmap::map_report(map, in, options), options.progress);
+  const liftmap::MapResult map = liftmap::map_files(job.path_a, job.path_b, job.landmarks_path, job.out_dir, job.args,
+                                                    progress_printer(job.quiet), print_warning);
   if (!map.verification.passed) {
     std::cerr << "liftmap: verification failed (outputs kept in " << job.out_dir
               << ", see report.json): " << map.verification.failures.front() << '\n';
@@ -227,10 +205,12 @@ int run_map(const PairJob& job) {
 }
 
 int run_cut(const PairJob& job) {
-  const liftmap::MapInputs in = read_inputs(job);
+  liftmap::MapOptions options = liftmap::map_options(job.args);
+  const liftmap::MapInputs in = liftmap::read_map_inputs(job.path_a, job.path_b, job.landmarks_path, job.out_dir,
+                                                         job.args.fix_orientation, print_warning);
   liftmap::require_mappable(liftmap::check_mesh(in.a.V, in.a.F), job.path_a);
   liftmap::require_mappable(liftmap::check_mesh(in.b.V, in.b.F), job.path_b);
-  liftmap::MapOptions options = map_options(job);
+  options.progress = progress_printer(job.quiet);
   if (options.progress) options.progress("cut", "cutting both meshes to disks");
   const liftmap::CutResult cut =
       liftmap::cut_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options.cut);
@@ -251,6 +231,60 @@ int run_cut(const PairJob& job) {
                  job.out_dir.c_str(), cut.tree.size(), cut.nu.size());
   }
   return liftmap::kExitOk;
+}
+
+/// `liftmap batch`: the manifest, the output folder and the map options every pair starts from.
+struct BatchJob {
+  std::string manifest, out_dir, shard = "0/1";
+  int jobs = 1;
+  liftmap::MapArguments args;
+  bool quiet = false;
+};
+
+void add_batch_options(CLI::App* cmd, BatchJob& job) {
+  cmd->add_option("MANIFEST", job.manifest,
+                  "CSV with a header: mesh_a,mesh_b,landmarks[,name][,options of map...], one pair per line; "
+                  "relative paths from the manifest's folder")
+      ->required();
+  cmd->add_option("-o,--out", job.out_dir, "Output folder: OUT/<name>/ per pair, OUT/summary.csv")->required();
+  cmd->add_option("--shard", job.shard, "Map every n-th pair from the i-th (0-based), i/n, e.g. $SLURM_ARRAY_TASK_ID/8")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            try {
+              liftmap::parse_shard(value);
+            } catch (const liftmap::UsageError&) {
+              return "'" + value + "' is not i/n with 0 <= i < n";
+            }
+            return std::string();
+          },
+          "i/n"))
+      ->capture_default_str();
+  cmd->add_option("--jobs", job.jobs, "Pairs mapped at once, the threads divided between them")
+      ->check(CLI::Range(1, liftmap::MapOptionLimits::max_threads()))
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
+  add_map_arguments(cmd, job.args, false);
+  cmd->get_option("--threads")
+      ->description("Threads of all maps together, divided between the --jobs (default: all hardware threads)");
+}
+
+int run_batch(const BatchJob& job) {
+  liftmap::map_options(job.args);  // the batch's own options, checked before the manifest is read
+  const std::vector<liftmap::BatchPair> pairs = liftmap::read_manifest(job.manifest, job.args);
+  liftmap::BatchOptions options;
+  options.shard = liftmap::parse_shard(job.shard);
+  options.jobs = job.jobs;
+  options.threads = job.args.threads;
+  options.warning = print_warning;
+  if (!job.quiet) options.progress = [](const std::string& line) { std::cerr << "liftmap: batch: " << line << '\n'; };
+  const liftmap::BatchResult r = liftmap::run_batch(pairs, job.out_dir, options);
+  const liftmap::BatchCounts& s = r.summary;
+  std::printf(
+      "liftmap: batch: %d pairs in %s/summary.csv: %d ok, %d failed, %d pending; shard %s: %d pairs, %d mapped now, "
+      "%d complete before, %d failed\n",
+      s.pairs, job.out_dir.c_str(), s.ok, s.failed, s.pending, job.shard.c_str(), r.shard_pairs, r.mapped, r.skipped,
+      r.shard_failed);
+  return r.shard_failed > 0 ? liftmap::kExitBatchFailures : liftmap::kExitOk;
 }
 
 struct TransferJob {
@@ -334,35 +368,17 @@ int run(int argc, char** argv) {
   PairJob map_job;
   CLI::App* map = app.add_subcommand("map", "Compute the bijective map between A and B and write it to a folder");
   add_pair_options(map, map_job);
-  map->add_option("--p", map_job.p, "Norm of the energy (10a): 2 or inf")
-      ->check(CLI::IsMember({"2", "inf"}))
-      ->capture_default_str();
-  map->add_option("--h", map_job.h, "Per-face distortion: eq3 = sqrt(Sigma^2 + sigma^-2), eq2 = max")
-      ->check(CLI::IsMember({"eq2", "eq3"}))
-      ->capture_default_str();
-  map->add_flag("--no-normalize", map_job.no_normalize, "Do not scale both meshes to the same area");
-  map->add_option("--solver", map_job.solver,
-                  "Solver of the convex subproblems: barrier, primal-dual, or auto (barrier for p = 2, primal-dual for "
-                  "p = inf)")
-      ->check(CLI::IsMember({"auto", "barrier", "primal-dual"}))
-      ->capture_default_str();
-  map->add_option("--tolerance", map_job.tolerance, "Stop when the energy improves by less than this (relative)")
-      ->check(kFinitePositive)
-      ->capture_default_str();
-  map->add_option("--max-iterations", map_job.max_iterations, "Outer iterations of the flattening")
-      ->check(CLI::Range(0, liftmap::MapOptionLimits::kMaxOuterIterations))
-      ->capture_default_str();
-  map->add_option("--start-relaxation", map_job.start_relaxation,
-                  "Newton steps at most of the start's joint relaxation, common boundary free (0: off)")
-      ->check(CLI::Range(0, liftmap::MapOptionLimits::kMaxOuterIterations))
-      ->capture_default_str();
-  map->add_option("--samples", map_job.samples, "Distortion of f, g: n^2 samples per face")
-      ->check(CLI::Range(1, liftmap::MapOptionLimits::kMaxSamplesPerEdge))
-      ->capture_default_str();
+  add_map_arguments(map, map_job.args, false);
 
   PairJob cut_job;
   CLI::App* cut = app.add_subcommand("cut", "Cut A and B to disks along a common tree (inspect a cut before mapping)");
   add_pair_options(cut, cut_job);
+  add_map_arguments(cut, cut_job.args, true);
+
+  BatchJob batch_job;
+  CLI::App* batch = app.add_subcommand(
+      "batch", "Map every pair of a manifest into OUT/<name>/ as `map` does: resumable, sharded, several at once");
+  add_batch_options(batch, batch_job);
 
   TransferJob transfer_job;
   CLI::App* transfer = app.add_subcommand("transfer", "Carry data from one mesh to the other through a map file");
@@ -407,9 +423,10 @@ int run(int argc, char** argv) {
   if (*transfer_attributes) return run_transfer_attributes(transfer_job);
   if (*transfer_mesh) return run_transfer_mesh(transfer_job);
   if (*eval) return run_eval(eval_map, eval_truth, eval_target);
+  if (*batch) return run_batch(batch_job);
   for (auto [cmd, job] : {std::pair{map, &map_job}, std::pair{cut, &cut_job}}) {
     if (!*cmd) continue;
-    if (job->threads > 0) omp_set_num_threads(job->threads);
+    if (job->args.threads) omp_set_num_threads(*job->args.threads);
     return cmd == map ? run_map(*job) : run_cut(*job);
   }
   return liftmap::kExitUsage;
@@ -422,25 +439,10 @@ int main(int argc, char** argv) {
     // The executable owns its process: OpenBLAS's pool (pthreads build only) at one thread during factorisations.
     liftmap::SparseCholesky::limit_openblas_pool(true);
     return run(argc, argv);
-  } catch (const liftmap::UsageError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitUsage;
-  } catch (const liftmap::IoError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitIo;
-  } catch (const liftmap::InvalidInputError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitInvalidInput;
-  } catch (const liftmap::PipelineError& e) {
-    std::cerr << "liftmap: " << e.what() << '\n';
-    return liftmap::kExitPipeline;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "liftmap: out of memory\n";
-    return liftmap::kExitInternal;
-  } catch (const std::exception& e) {
-    std::cerr << "liftmap: internal error: " << e.what() << '\n';
-    return liftmap::kExitInternal;
   } catch (...) {
-    return liftmap::kExitInternal;
+    std::string message;
+    const int code = liftmap::exit_code_of(std::current_exception(), message);
+    std::cerr << "liftmap: " << message << '\n';
+    return code;
   }
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arrays.h"
+#include "batch_functions.h"
 #include "check/check_mesh.h"
 #include "core/errors.h"
 #include "io/landmarks.h"
@@ -72,18 +73,19 @@ Map map_arrays(const py::handle& VA, const py::handle& FA, const py::handle& VB,
                int max_iterations, const std::string& solver, const std::string& tree, int samples,
                std::optional<int> threads, bool fix_orientation, const py::object& progress, const std::string& name_a,
                const std::string& name_b, bool accept_unverified, int start_relaxation) {
-  const MapKeywords k{{norm_name(p), h, solver, tree},
-                      normalize,
-                      tolerance,
-                      max_iterations,
-                      samples,
-                      threads,
-                      fix_orientation,
-                      progress,
-                      name_a,
-                      name_b,
-                      accept_unverified,
-                      start_relaxation};
+  MapKeywords k;
+  k.arguments.choices = {norm_name(p), h, solver, tree};
+  k.arguments.normalize = normalize;
+  k.arguments.tolerance = tolerance;
+  k.arguments.max_iterations = max_iterations;
+  k.arguments.samples = samples;
+  k.arguments.threads = threads;
+  k.arguments.fix_orientation = fix_orientation;
+  k.arguments.start_relaxation = start_relaxation;
+  k.progress = progress;
+  k.name_a = name_a;
+  k.name_b = name_b;
+  k.accept_unverified = accept_unverified;
   return compute_map(VA, FA, VB, FB, landmarks, k);
 }
 
@@ -204,6 +206,7 @@ PYBIND11_MODULE(liftmap, m) {
       "liftmap: continuous, bijective, low-distortion maps between two closed genus-0 triangle meshes from "
       "landmarks (Aigerman, Poranne, Lipman: Lifted Bijections for Low Distortion Surface Mappings, 2014).";
   register_exceptions(m);
+  bind_batch(m);
   bind_vertex_map(m);
   bind_map(m);
   m.def("read_mesh", &read_mesh_arrays, "path"_a, R"(read_mesh(path) -> (V, F)

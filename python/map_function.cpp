@@ -13,13 +13,6 @@ namespace liftmap::python {
 
 namespace {
 
-void require_range(const std::string& name, int value, int low, int high) {
-  if (value < low || value > high) {
-    throw UsageError(name + ": value " + std::to_string(value) + " not in range " + std::to_string(low) + " to " +
-                     std::to_string(high));
-  }
-}
-
 /// The callback called with the GIL held; the Python object is released with the GIL held too, whichever thread
 /// drops the last copy of the std::function.
 std::function<void(const std::string&, const std::string&)> progress_from(const py::object& callback) {
@@ -58,21 +51,7 @@ std::string norm_name(const py::handle& p) {
 }
 
 MapOptions options_from(const MapKeywords& k) {
-  MapOptions o;
-  set_map_choices(o, k.choices);
-  if (!std::isfinite(k.tolerance) || k.tolerance <= 0) {
-    throw UsageError("tolerance: value " + figure(k.tolerance) + " is not a finite number > 0");
-  }
-  require_range("max_iterations", k.max_iterations, 0, MapOptionLimits::kMaxOuterIterations);
-  require_range("samples", k.samples, 1, MapOptionLimits::kMaxSamplesPerEdge);
-  require_range("start_relaxation", k.start_relaxation, 0, MapOptionLimits::kMaxOuterIterations);
-  if (k.threads) require_range("threads", *k.threads, 1, MapOptionLimits::max_threads());
-  o.flatten.normalize_area = k.normalize;
-  o.flatten.relative_tolerance = k.tolerance;
-  o.flatten.max_iterations = k.max_iterations;
-  o.flatten.joint_start.newton.max_iterations = k.start_relaxation;
-  o.distortion_samples_per_edge = k.samples;
-  o.threads = k.threads.value_or(0);
+  MapOptions o = map_options(k.arguments);
   o.name_a = k.name_a;
   o.name_b = k.name_b;
   o.progress = progress_from(k.progress);
@@ -88,7 +67,7 @@ Map compute_map(const py::handle& VA, const py::handle& FA, const py::handle& VB
   MapInputs& in = state->inputs;
   in = {keywords.name_a, keywords.name_b, state->given_a, state->given_b, {}, false, false};
   in.landmarks = landmarks_from(landmarks, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
-  if (keywords.fix_orientation) {
+  if (keywords.arguments.fix_orientation) {
     in.reversed_a = fix_orientation(in.a, keywords.name_a);
     in.reversed_b = fix_orientation(in.b, keywords.name_b);
   }

@@ -6,30 +6,24 @@
 #include <optional>
 #include <string>
 
+#include "map/map_arguments.h"
 #include "map/map_meshes.h"
 #include "map_object.h"
 
 namespace liftmap::python {
 
-/// The keyword arguments of liftmap.map (the options of `liftmap map`, README "Command line").
+/// The keyword arguments of liftmap.map: the options of `liftmap map` (README "Command line") and the Python call's.
 struct MapKeywords {
-  MapChoiceNames choices;  ///< p, h, solver, tree
-  bool normalize = true;
-  double tolerance = 1e-3;
-  int max_iterations = 10;
-  int samples = 2;
-  std::optional<int> threads;
-  bool fix_orientation = false;
+  MapArguments arguments;     ///< p, h, normalize, tolerance, max_iterations, samples, threads, ...
   pybind11::object progress;  ///< None or callable(stage: str, message: str)
   std::string name_a = "mesh A", name_b = "mesh B";
   bool accept_unverified = false;
-  int start_relaxation = JointStartRelaxationOptions{}.newton.max_iterations;
 };
 
 /// The CLI's name of an energy norm given as 2, 2.0, "2", inf or "inf".
 std::string norm_name(const pybind11::handle& p);
 
-/// MapOptions from the keywords, with the CLI's ranges (MapOptionLimits).
+/// MapOptions from the keywords, checked as the CLI checks its options (map_options).
 /// \throw UsageError naming the keyword and the accepted values.
 MapOptions options_from(const MapKeywords& keywords);
 

@@ -13,7 +13,7 @@ packages=(
   libopenblas0-serial
   libgtest-dev libcli11-dev nlohmann-json3-dev libstb-dev
   python3 python3-dev python3-numpy python3-cvxopt python3-matplotlib
-  pybind11-dev python3-pytest
+  pybind11-dev python3-pytest python3-distributed
   clang-format clang-tidy
 )
 missing=()

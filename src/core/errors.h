@@ -62,6 +62,7 @@ enum ExitCode : int {
   kExitIo = 3,
   kExitInvalidInput = 4,
   kExitPipeline = 5,
+  kExitBatchFailures = 6,  ///< `liftmap batch`: some pairs failed (each with its own code in summary.csv)
 };
 
 }  // namespace liftmap
