@@ -19,8 +19,9 @@
 namespace liftmap {
 namespace {
 
-// SparseCholesky runs CHOLMOD's OpenMP regions inline through its GOMP_parallel shim; every other region (ours, the
-// host application's) must still get its threads, and the factorisation must still be right.
+// SparseCholesky runs CHOLMOD single-threaded while it factorises (SerialBlas; the executable's GOMP_parallel shim,
+// app/inline_openmp_regions.cpp, is not linked here); every other region (ours, the host application's) must still
+// get its threads, and the factorisation must still be right.
 TEST(flatten_sparse_cholesky, FactorisesAndLeavesOtherParallelRegionsTheirThreads) {
   const int n = 400;  // a path Laplacian plus identity: CHOLMOD opens regions for it like for the real systems
   std::vector<Eigen::Triplet<double>> trip;
