@@ -22,12 +22,11 @@ namespace liftmap {
 
 /// Settings of relax_joint_start.
 struct JointStartRelaxationOptions {
-  /// Projected Newton steps at most, and the relative decrease of E below which a step ends the relaxation.
-  /// max_iterations 0 (the default): off. 100 is the setting measured in docs/algorithm.md; it is not the default
-  /// yet because it breaks the identity on moved copies (a mesh onto a copy scaled by a power of two: map error up
-  /// to 1.4e-6 of sqrt(area) instead of below 1e-8): the two disks' unknowns are eliminated in different orders, and
-  /// the non-convex steps amplify the rounding asymmetry that the convex subproblems damp.
-  SymmetricDirichletOptions newton{.max_iterations = 0, .relative_decrease = 1e-3};
+  /// Projected Newton steps at most (0: off, the paper's start on the circle), and the relative decrease of E below
+  /// which a step ends the relaxation. Each disk's own unknowns are solved for from its own faces
+  /// (SymmetricDirichletTerm::own_solve), so two identical disks stay bitwise identical: a mesh mapped onto a copy of
+  /// itself scaled by a power of two is the identity to rounding.
+  SymmetricDirichletOptions newton{.max_iterations = 100, .relative_decrease = 1e-3};
   /// w_g: the ghost faces' weight, relative to the disks' faces. Their rest shape is their placement at the start
   /// (place_ghost_vertices); they hold no energy of the map and are re-placed before every subproblem.
   double ghost_weight = 0.1;

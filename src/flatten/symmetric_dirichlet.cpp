@@ -144,37 +144,127 @@ std::vector<std::array<int, 6>> face_unknowns(const std::vector<Face>& faces, co
   return var;
 }
 
-/// Fills p.A with the projected Hessian of E at X (plus a tiny multiple of its diagonal, which keeps the
-/// semidefinite sum definite) and g with its gradient, over the unknowns var (subproblem::make_pattern's pattern).
-void newton_system(const std::vector<Face>& faces, const std::vector<std::array<int, 6>>& var, const Eigen::MatrixXd& X,
-                   subproblem::Pattern& p, Eigen::VectorXd& g) {
+/// Every face's gradient and projected Hessian of its term of E at X, in its six corner coordinates.
+struct FaceDerivatives {
+  std::vector<Vec6> g;
+  std::vector<Mat6> h;
+};
+
+FaceDerivatives face_derivatives(const std::vector<Face>& faces, const Eigen::MatrixXd& X) {
   const auto nf = static_cast<Eigen::Index>(faces.size());
-  std::vector<Vec6> gx(faces.size());
-  std::vector<Mat6> hx(faces.size());
+  FaceDerivatives d{.g = std::vector<Vec6>(faces.size()), .h = std::vector<Mat6>(faces.size())};
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
   for (Eigen::Index f = 0; f < nf; ++f) {
     const Face& face = faces[static_cast<size_t>(f)];
     Vec4 gj;
     Mat4 hj;
     face_derivatives(face.D * corners(face, X), gj, hj);
-    gx[static_cast<size_t>(f)] = face.w * face.D.transpose() * gj;
-    hx[static_cast<size_t>(f)] = face.w * face.D.transpose() * hj * face.D;
+    d.g[static_cast<size_t>(f)] = face.w * face.D.transpose() * gj;
+    d.h[static_cast<size_t>(f)] = face.w * face.D.transpose() * hj * face.D;
   }
+  return d;
+}
+
+/// Fills p.A with the sum of the faces' projected Hessians (faces `first` to `first + var.size()`, var their unknowns,
+/// p made by subproblem::make_pattern(var, ...)) plus a tiny multiple of its diagonal, which keeps the semidefinite
+/// sum definite, and g with the sum of their gradients plus the Hessians times the corners' `known` step (the
+/// unknowns' own rows: g + H_ok d_k). Sums run in face order: they do not depend on the threads.
+void newton_system(const FaceDerivatives& d, size_t first, const std::vector<std::array<int, 6>>& var,
+                   const std::vector<Vec6>* known, subproblem::Pattern& p, Eigen::VectorXd& g) {
   double* values = p.A.valuePtr();
   std::fill(values, values + p.A.nonZeros(), 0.0);
   g = Eigen::VectorXd::Zero(p.A.rows());
-  for (size_t f = 0; f < faces.size(); ++f) {  // in face order: the sums do not depend on the threads
+  for (size_t i = 0; i < var.size(); ++i) {
+    const size_t f = first + i;
+    const Vec6 gf = known == nullptr ? d.g[f] : Vec6(d.g[f] + d.h[f] * (*known)[i]);
     for (int a = 0; a < 6; ++a) {
-      const int ra = var[f][static_cast<size_t>(a)];
+      const int ra = var[i][static_cast<size_t>(a)];
       if (ra < 0) continue;
-      g(ra) += gx[f](a);
+      g(ra) += gf(a);
       for (int b = 0; b < 6; ++b) {
-        const int at = p.index[f][static_cast<size_t>(6 * a + b)];
-        if (at >= 0) values[at] += hx[f](a, b);
+        const int at = p.index[i][static_cast<size_t>(6 * a + b)];
+        if (at >= 0) values[at] += d.h[f](a, b);
       }
     }
   }
   for (Eigen::Index i = 0; i < p.A.rows(); ++i) p.A.coeffRef(i, i) += 1e-12 * (1 + std::abs(p.A.coeff(i, i)));
+}
+
+/// A term's own unknowns (SymmetricDirichletTerm::own_solve) and the system over them.
+struct OwnSolve {
+  size_t first = 0;                          ///< the term's first face in gather_faces' order
+  std::vector<std::array<int, 6>> var;       ///< per face of the term: its own unknown of each corner coordinate, or -1
+  std::vector<int> global;                   ///< own unknown -> the joint system's unknown
+  subproblem::Pattern pattern;
+  SparseCholesky cholesky;
+};
+
+/// The own unknowns of every term with own_solve set: the joint unknowns (var) that only its faces touch.
+std::vector<OwnSolve> own_solves(const std::vector<SymmetricDirichletTerm>& terms,
+                                 const std::vector<std::array<int, 6>>& var, int n_var) {
+  const int n = n_var;  // unknowns of the joint system (coordinates)
+  std::vector<int> owner(static_cast<size_t>(n), -1);  // the term whose faces touch the unknown, -2 if several
+  size_t first = 0;
+  for (size_t t = 0; t < terms.size(); ++t) {
+    const auto nf = static_cast<size_t>(terms[t].F->rows());
+    for (size_t f = first; f < first + nf; ++f) {
+      for (const int u : var[f]) {
+        if (u < 0) continue;
+        int& o = owner[static_cast<size_t>(u)];
+        o = o == -1 || o == static_cast<int>(t) ? static_cast<int>(t) : -2;
+      }
+    }
+    first += nf;
+  }
+  std::vector<OwnSolve> out;
+  first = 0;
+  for (size_t t = 0; t < terms.size(); ++t) {
+    const auto nf = static_cast<size_t>(terms[t].F->rows());
+    if (terms[t].own_solve) {
+      OwnSolve o;
+      o.first = first;
+      std::vector<int> local(static_cast<size_t>(n), -1);
+      for (int u = 0; u < n; ++u) {  // in the joint order, so that terms with the same data number alike
+        if (owner[static_cast<size_t>(u)] != static_cast<int>(t)) continue;
+        local[static_cast<size_t>(u)] = static_cast<int>(o.global.size());
+        o.global.push_back(u);
+      }
+      for (size_t f = first; f < first + nf; ++f) {
+        std::array<int, 6> v{};
+        for (int a = 0; a < 6; ++a) {
+          const int u = var[f][static_cast<size_t>(a)];
+          v[static_cast<size_t>(a)] = u < 0 ? -1 : local[static_cast<size_t>(u)];
+        }
+        o.var.push_back(v);
+      }
+      if (!o.global.empty()) {
+        o.pattern = subproblem::make_pattern(o.var, static_cast<int>(o.global.size()));
+        o.cholesky.analyze(o.pattern.A);
+        out.push_back(std::move(o));
+      }
+    }
+    first += nf;
+  }
+  return out;
+}
+
+/// Replaces the own unknowns' part of the joint step dx by H_oo^-1 (-(g_o + H_os dx_s)), from the term's faces alone.
+/// \return false if H_oo is not numerically positive definite.
+bool solve_own_unknowns(const FaceDerivatives& d, const std::vector<std::array<int, 6>>& var, OwnSolve& o,
+                        Eigen::VectorXd& dx) {
+  std::vector<Vec6> known(o.var.size(), Vec6::Zero());  // the shared unknowns' step at each face's corners
+  for (size_t i = 0; i < o.var.size(); ++i) {
+    for (int a = 0; a < 6; ++a) {
+      const int u = var[o.first + i][static_cast<size_t>(a)];
+      if (u >= 0 && o.var[i][static_cast<size_t>(a)] < 0) known[i](a) = dx(u);
+    }
+  }
+  Eigen::VectorXd r;
+  newton_system(d, o.first, o.var, &known, o.pattern, r);
+  if (!o.cholesky.factorize(o.pattern.A)) return false;
+  const Eigen::VectorXd own = o.cholesky.solve(-r);
+  for (size_t k = 0; k < o.global.size(); ++k) dx(o.global[k]) = own(static_cast<Eigen::Index>(k));
+  return true;
 }
 
 void check_terms(const std::vector<SymmetricDirichletTerm>& terms, Eigen::Index n_slots) {
@@ -222,11 +312,16 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
   subproblem::Pattern pattern = subproblem::make_pattern(var, 2 * n);
   SparseCholesky cholesky;
   cholesky.analyze(pattern.A);
+  std::vector<OwnSolve> own = own_solves(terms, var, 2 * n);
   for (int iter = 0; iter < options.max_iterations; ++iter) {
+    const FaceDerivatives d = face_derivatives(faces, res.U);
     Eigen::VectorXd g;
-    newton_system(faces, var, res.U, pattern, g);
+    newton_system(d, 0, var, nullptr, pattern, g);
     if (!cholesky.factorize(pattern.A)) break;
-    const Eigen::VectorXd dx = cholesky.solve(-g);
+    Eigen::VectorXd dx = cholesky.solve(-g);
+    bool solved = true;
+    for (OwnSolve& o : own) solved = solved && solve_own_unknowns(d, var, o, dx);
+    if (!solved) break;
     Eigen::MatrixXd step_x = Eigen::MatrixXd::Zero(ns, 2);
     for (Eigen::Index v = 0; v < ns; ++v) {
       const int r = dof[static_cast<size_t>(v)];

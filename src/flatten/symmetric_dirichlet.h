@@ -30,6 +30,11 @@ struct SymmetricDirichletTerm {
   const Eigen::MatrixXi* F = nullptr;          ///< #F by 3 vertex indices
   const std::vector<int>* slot = nullptr;      ///< #V: the row of X holding the vertex's position
   double weight = 1;                           ///< the term's factor in E (positive)
+  /// Solve again for the term's own unknowns (those no other term touches) from its own faces, once the Newton step
+  /// of the shared ones is known: H_oo d_o = -(g_o + H_os d_s), the same equation as the joint solve's rows, so the
+  /// step is mathematically unchanged. Two terms with the same data then get bitwise the same step, whatever order
+  /// the joint factorisation eliminates their unknowns in (a mesh mapped onto a copy of itself stays the identity).
+  bool own_solve = false;
 };
 
 /// Lowers E(X) = sum over the terms of weight * sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4) as the single-mesh
