@@ -107,7 +107,7 @@ Options (the CLI's, README "Command line"):
   solver: "auto" (barrier for p = 2, primal-dual for p = inf), "barrier" or "primal-dual". Default "auto".
   tree: cut tree, "mst" (paper) or "path" (through all landmarks). Default "mst".
   start_relaxation: Newton steps at most of the start's joint relaxation, common boundary free, 0 to 10000 (0:
-    the paper's start on a circle). Default 0; 100: see the README.
+    the paper's start on a circle, which takes more outer iterations). Default 100.
   samples: n, the n^2 samples per face at which the distortion of f and g is measured, 1 to 10. Default 2.
   threads: threads of the per-face work, 1 to 4 per hardware thread; None: the calling thread's OpenMP
     setting. Set for this call on its own thread only.
