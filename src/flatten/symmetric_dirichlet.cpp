@@ -1,6 +1,5 @@
 #include "flatten/symmetric_dirichlet.h"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
@@ -11,13 +10,13 @@
 #include "core/errors.h"
 #include "flatten/sparse_cholesky.h"
 #include "flatten/subproblem_faces.h"
+#include "flatten/symmetric_dirichlet_face.h"
 
 namespace liftmap {
 
 namespace {
 
 using Vec4 = Eigen::Vector4d;
-using Mat4 = Eigen::Matrix4d;
 using Mat46 = Eigen::Matrix<double, 4, 6>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
@@ -64,13 +63,6 @@ Vec6 corners(const Face& face, const Eigen::MatrixXd& X) {
 
 double det(const Vec4& j) { return j(0) * j(3) - j(1) * j(2); }
 
-/// |J|^2 + |J^-1|^2 - 4 = |J|^2 (1 + 1 / det^2) - 4 (for 2 by 2 matrices |adj J| = |J|); +inf unless det > 0.
-double face_energy(const Vec4& j) {
-  const double d = det(j);
-  if (!(d > 0)) return std::numeric_limits<double>::infinity();
-  return j.squaredNorm() * (1 + 1 / (d * d)) - 4;
-}
-
 /// E(X), +inf at a flipped face; the faces' terms are summed in face order, whatever the threads.
 double energy(const std::vector<Face>& faces, const Eigen::MatrixXd& X) {
   const auto nf = static_cast<Eigen::Index>(faces.size());
@@ -78,26 +70,11 @@ double energy(const std::vector<Face>& faces, const Eigen::MatrixXd& X) {
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
   for (Eigen::Index f = 0; f < nf; ++f) {
     const Face& face = faces[static_cast<size_t>(f)];
-    e(f) = face.w * face_energy(face.D * corners(face, X));
+    e(f) = face.w * symmetric_dirichlet_energy(face.D * corners(face, X));
   }
   double sum = 0;
   for (Eigen::Index f = 0; f < nf; ++f) sum += e(f);
   return sum;
-}
-
-/// Gradient and projected Hessian of face_energy in j.
-void face_derivatives(const Vec4& j, Vec4& grad, Mat4& hess) {
-  const double d = det(j), n2 = j.squaredNorm();
-  const Vec4 gd(j(3), -j(2), -j(1), j(0));  // d det / dj
-  Mat4 hd = Mat4::Zero();                   // d^2 det / dj^2
-  hd(0, 3) = hd(3, 0) = 1;
-  hd(1, 2) = hd(2, 1) = -1;
-  const double d2 = 1 / (d * d), d3 = d2 / d, d4 = d2 * d2;
-  grad = 2 * (1 + d2) * j - 2 * n2 * d3 * gd;
-  hess = 2 * (1 + d2) * Mat4::Identity() - 4 * d3 * (j * gd.transpose() + gd * j.transpose()) +
-         n2 * (6 * d4 * gd * gd.transpose() - 2 * d3 * hd);
-  const Eigen::SelfAdjointEigenSolver<Mat4> eig(hess);
-  hess = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0).asDiagonal() * eig.eigenvectors().transpose();
 }
 
 /// The smallest t > 0 with det(j + t dj) = 0, or +inf.
@@ -156,11 +133,9 @@ FaceDerivatives face_derivatives(const std::vector<Face>& faces, const Eigen::Ma
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
   for (Eigen::Index f = 0; f < nf; ++f) {
     const Face& face = faces[static_cast<size_t>(f)];
-    Vec4 gj;
-    Mat4 hj;
-    face_derivatives(face.D * corners(face, X), gj, hj);
-    d.g[static_cast<size_t>(f)] = face.w * face.D.transpose() * gj;
-    d.h[static_cast<size_t>(f)] = face.w * face.D.transpose() * hj * face.D;
+    const SymmetricDirichletDerivatives dj = symmetric_dirichlet_derivatives(face.D * corners(face, X));
+    d.g[static_cast<size_t>(f)] = face.w * face.D.transpose() * dj.gradient;
+    d.h[static_cast<size_t>(f)] = face.w * face.D.transpose() * dj.hessian * face.D;
   }
   return d;
 }
