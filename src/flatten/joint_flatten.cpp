@@ -210,8 +210,12 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
     }
     place_ghost_vertices(sp, jp.X0);
     if (options.joint_start.newton.max_iterations > 0) {
+      const auto relax_start = std::chrono::steady_clock::now();
       SymmetricDirichletResult r = relax_joint_start(sp, jp.X0, options.joint_start);
-      jp.joint_start = {.steps = r.iterations, .energy_before = r.energy_start, .energy_after = r.energy};
+      jp.joint_start = {.steps = r.iterations,
+                        .energy_before = r.energy_start,
+                        .energy_after = r.energy,
+                        .seconds = seconds_since(relax_start)};
       jp.X0 = std::move(r.U);
       place_ghost_vertices(sp, jp.X0);
     }

@@ -92,6 +92,7 @@ struct JointStartRelaxation {
   int steps = 0;             ///< projected Newton steps taken (0: off, or nothing gained)
   double energy_before = 0;  ///< its energy E before and after (0, 0 if off)
   double energy_after = 0;
+  double seconds = 0;  ///< wall time of the relaxation (part of iteration 0's seconds)
 };
 
 /// Statistics of one iterate (index 0: the Tutte start).

@@ -110,7 +110,10 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
   j["flatten"] = {
       {"start", start},
       {"joint_start_relaxation",
-       {{"steps", relax.steps}, {"energy_before", relax.energy_before}, {"energy_after", relax.energy_after}}},
+       {{"steps", relax.steps},
+        {"energy_before", relax.energy_before},
+        {"energy_after", relax.energy_after},
+        {"seconds", relax.seconds}}},
       {"iterations", it},
       {"converged", map.flattening.converged},
       {"stop_reason", map.flattening.stop_reason}};
