@@ -41,7 +41,7 @@ SymmetricDirichletDerivatives symmetric_dirichlet_derivatives(const FaceJacobian
     V.col(1) *= -1;
   }
   const double psi1 = 2 * s1 - 2 / (s1 * s1 * s1), psi2 = 2 * s2 - 2 / (s2 * s2 * s2);
-  const double p3 = std::pow(s1 * s2, 3);
+  const double p = s1 * s2, p3 = p * p * p;
   const double scale1 = 2 + 6 / (s1 * s1 * s1 * s1), scale2 = 2 + 6 / (s2 * s2 * s2 * s2);
   const double flip = 2 + 2 * (s1 * s1 + s1 * s2 + s2 * s2) / p3;
   const double twist = std::max(0.0, 2 - 2 * (s1 * s1 - s1 * s2 + s2 * s2) / p3);
