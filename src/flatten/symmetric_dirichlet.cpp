@@ -174,10 +174,35 @@ struct OwnSolve {
   SparseCholesky cholesky;
 };
 
-/// The own unknowns of every term with own_solve set: the joint unknowns (var) that only its faces touch.
-std::vector<OwnSolve> own_solves(const std::vector<SymmetricDirichletTerm>& terms,
-                                 const std::vector<std::array<int, 6>>& var, int n_var) {
-  const int n = n_var;  // unknowns of the joint system (coordinates)
+/// Per corner coordinate of each of the term's faces: its own unknown (>= 0), a shared unknown u as -2 - u, or -1
+/// (fixed). Two terms with equal signatures, faces (Jacobian maps, factors) are solved alike by solve_own_unknowns.
+std::vector<std::array<int, 6>> signature(const OwnSolve& o, const std::vector<std::array<int, 6>>& var) {
+  std::vector<std::array<int, 6>> sig = o.var;
+  for (size_t i = 0; i < sig.size(); ++i) {
+    for (size_t a = 0; a < 6; ++a) {
+      const int u = var[o.first + i][a];
+      if (sig[i][a] < 0 && u >= 0) sig[i][a] = -2 - u;
+    }
+  }
+  return sig;
+}
+
+bool same_data(const std::vector<Face>& faces, const std::vector<std::array<int, 6>>& var, const OwnSolve& a,
+               const OwnSolve& b) {
+  if (a.var.size() != b.var.size() || a.global.size() != b.global.size()) return false;
+  for (size_t i = 0; i < a.var.size(); ++i) {
+    const Face& fa = faces[a.first + i];
+    const Face& fb = faces[b.first + i];
+    if (fa.D != fb.D || fa.w != fb.w) return false;
+  }
+  return signature(a, var) == signature(b, var);
+}
+
+/// The own unknowns of every term with own_solve set (the joint unknowns that only its faces touch), kept for the
+/// terms whose data equal another such term's: only there can the joint factorisation's elimination order make steps
+/// that should be identical differ.
+std::vector<OwnSolve> own_solves(const std::vector<SymmetricDirichletTerm>& terms, const std::vector<Face>& faces,
+                                 const std::vector<std::array<int, 6>>& var, int n) {
   std::vector<int> owner(static_cast<size_t>(n), -1);  // the term whose faces touch the unknown, -2 if several
   size_t first = 0;
   for (size_t t = 0; t < terms.size(); ++t) {
@@ -191,7 +216,7 @@ std::vector<OwnSolve> own_solves(const std::vector<SymmetricDirichletTerm>& term
     }
     first += nf;
   }
-  std::vector<OwnSolve> out;
+  std::vector<OwnSolve> candidates;
   first = 0;
   for (size_t t = 0; t < terms.size(); ++t) {
     const auto nf = static_cast<size_t>(terms[t].F->rows());
@@ -212,13 +237,23 @@ std::vector<OwnSolve> own_solves(const std::vector<SymmetricDirichletTerm>& term
         }
         o.var.push_back(v);
       }
-      if (!o.global.empty()) {
-        o.pattern = subproblem::make_pattern(o.var, static_cast<int>(o.global.size()));
-        o.cholesky.analyze(o.pattern.A);
-        out.push_back(std::move(o));
-      }
+      if (!o.global.empty()) candidates.push_back(std::move(o));
     }
     first += nf;
+  }
+  std::vector<char> twin(candidates.size(), 0);
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    for (size_t j = i + 1; j < candidates.size(); ++j) {
+      if (same_data(faces, var, candidates[i], candidates[j])) twin[i] = twin[j] = 1;
+    }
+  }
+  std::vector<OwnSolve> out;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (!twin[i]) continue;
+    OwnSolve& o = candidates[i];
+    o.pattern = subproblem::make_pattern(o.var, static_cast<int>(o.global.size()));
+    o.cholesky.analyze(o.pattern.A);
+    out.push_back(std::move(o));
   }
   return out;
 }
@@ -287,7 +322,7 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
   subproblem::Pattern pattern = subproblem::make_pattern(var, 2 * n);
   SparseCholesky cholesky;
   cholesky.analyze(pattern.A);
-  std::vector<OwnSolve> own = own_solves(terms, var, 2 * n);
+  std::vector<OwnSolve> own = own_solves(terms, faces, var, 2 * n);
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const FaceDerivatives d = face_derivatives(faces, res.U);
     Eigen::VectorXd g;

@@ -34,6 +34,8 @@ struct SymmetricDirichletTerm {
   /// of the shared ones is known: H_oo d_o = -(g_o + H_os d_s), the same equation as the joint solve's rows, so the
   /// step is mathematically unchanged. Two terms with the same data then get bitwise the same step, whatever order
   /// the joint factorisation eliminates their unknowns in (a mesh mapped onto a copy of itself stays the identity).
+  /// Done only for a term whose data (faces' rest shapes and factors, own and shared unknowns) equal another
+  /// own_solve term's: for any other the joint step serves, and the second factorisation would double the cost.
   bool own_solve = false;
 };
 
