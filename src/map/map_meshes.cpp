@@ -19,6 +19,7 @@
 #include "flatten/distortion.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
+#include "map/thread_count_scope.h"
 
 namespace liftmap {
 
@@ -28,23 +29,6 @@ using Clock = std::chrono::steady_clock;
 
 /// The longest stretch without a progress line inside a convex subproblem.
 constexpr double kProgressSeconds = 3;
-
-/// OpenMP's thread count of the calling thread (its nthreads-var ICV), set for a scope and restored after it.
-class ThreadCountScope {
- public:
-  explicit ThreadCountScope(int threads) : saved_(omp_get_max_threads()), set_(threads > 0) {
-    if (set_) omp_set_num_threads(threads);
-  }
-  ~ThreadCountScope() {
-    if (set_) omp_set_num_threads(saved_);
-  }
-  ThreadCountScope(const ThreadCountScope&) = delete;
-  ThreadCountScope& operator=(const ThreadCountScope&) = delete;
-
- private:
-  int saved_;
-  bool set_;
-};
 
 // Barycentric coordinates of p in the triangle (a, b, c) of R^3, p assumed in (or very near) its plane.
 std::array<double, 3> barycentric_3d(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

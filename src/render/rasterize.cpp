@@ -1,5 +1,7 @@
 #include "render/rasterize.h"
 
+#include <omp.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -81,37 +83,47 @@ void draw_mesh(Frame& frame, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   }
   const double near = 1e-9 * bounding_sphere(V).radius;
 
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
-    if (z[a] <= near || z[b] <= near || z[c] <= near) continue;
-    const double area = edge(xy[a], xy[b], xy[c]);
-    if (area == 0.0 || !std::isfinite(area)) continue;
-    const double xmin = std::min({xy[a].x(), xy[b].x(), xy[c].x()});
-    const double xmax = std::max({xy[a].x(), xy[b].x(), xy[c].x()});
-    const double ymin = std::min({xy[a].y(), xy[b].y(), xy[c].y()});
-    const double ymax = std::max({xy[a].y(), xy[b].y(), xy[c].y()});
-    const int x0 = std::max(0, static_cast<int>(std::ceil(xmin - 0.5)));
-    const int x1 = std::min(frame.w - 1, static_cast<int>(std::floor(xmax - 0.5)));
-    const int y0 = std::max(0, static_cast<int>(std::ceil(ymin - 0.5)));
-    const int y1 = std::min(frame.h - 1, static_cast<int>(std::floor(ymax - 0.5)));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const Eigen::Vector2d p(x + 0.5, y + 0.5);
-        const double w0 = edge(xy[b], xy[c], p) / area;
-        const double w1 = edge(xy[c], xy[a], p) / area;
-        const double w2 = edge(xy[a], xy[b], p) / area;
-        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-        const double d =
-            frame.perspective() ? 1.0 / (w0 / z[a] + w1 / z[b] + w2 / z[c]) : w0 * z[a] + w1 * z[b] + w2 * z[c];
-        const std::size_t k = frame.index(x, y);
-        if (d < frame.depth[k]) {
-          frame.depth[k] = static_cast<float>(d);
-          frame.face[k] = static_cast<int>(f);
+  // The depth test in bands of rows, one thread each: every band sees the faces in order, so a sample keeps the
+  // same face (the nearest, the first of equal depths) whatever the threads.
+  const int bands = std::min(frame.h, 4 * omp_get_max_threads());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int band = 0; band < bands; ++band) {
+    const int band_y0 = static_cast<int>(static_cast<long>(frame.h) * band / bands);
+    const int band_y1 = static_cast<int>(static_cast<long>(frame.h) * (band + 1) / bands) - 1;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
+      if (z[a] <= near || z[b] <= near || z[c] <= near) continue;
+      const double ymin = std::min({xy[a].y(), xy[b].y(), xy[c].y()});
+      const double ymax = std::max({xy[a].y(), xy[b].y(), xy[c].y()});
+      const int y0 = std::max(band_y0, static_cast<int>(std::ceil(ymin - 0.5)));
+      const int y1 = std::min(band_y1, static_cast<int>(std::floor(ymax - 0.5)));
+      if (y0 > y1) continue;
+      const double area = edge(xy[a], xy[b], xy[c]);
+      if (area == 0.0 || !std::isfinite(area)) continue;
+      const double xmin = std::min({xy[a].x(), xy[b].x(), xy[c].x()});
+      const double xmax = std::max({xy[a].x(), xy[b].x(), xy[c].x()});
+      const int x0 = std::max(0, static_cast<int>(std::ceil(xmin - 0.5)));
+      const int x1 = std::min(frame.w - 1, static_cast<int>(std::floor(xmax - 0.5)));
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const Eigen::Vector2d p(x + 0.5, y + 0.5);
+          const double w0 = edge(xy[b], xy[c], p) / area;
+          const double w1 = edge(xy[c], xy[a], p) / area;
+          const double w2 = edge(xy[a], xy[b], p) / area;
+          if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+          const double d =
+              frame.perspective() ? 1.0 / (w0 / z[a] + w1 / z[b] + w2 / z[c]) : w0 * z[a] + w1 * z[b] + w2 * z[c];
+          const std::size_t k = frame.index(x, y);
+          if (d < frame.depth[k]) {
+            frame.depth[k] = static_cast<float>(d);
+            frame.face[k] = static_cast<int>(f);
+          }
         }
-      }
+    }
   }
 
   const Eigen::MatrixXd N = options.smooth_shading ? vertex_normals(V, F) : Eigen::MatrixXd();
+#pragma omp parallel for schedule(dynamic, 8)
   for (int y = 0; y < frame.h; ++y)
     for (int x = 0; x < frame.w; ++x) {
       const int f = frame.face[frame.index(x, y)];
@@ -131,7 +143,8 @@ void draw_mesh(Frame& frame, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
       const double nl = n.norm() > 0 ? std::abs(n.normalized().dot(light.normalized())) : 1.0;
       frame.colour.set(x, y,
                        albedo(f, w) * (options.ambient + options.diffuse * nl) +
-                           Eigen::Vector3d::Constant(options.specular * std::pow(nl, options.shininess)));
+                           Eigen::Vector3d::Constant(
+                               options.specular > 0 ? options.specular * std::pow(nl, options.shininess) : 0.0));
     }
 
   if (options.silhouette_width <= 0) return;
@@ -139,6 +152,7 @@ void draw_mesh(Frame& frame, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   const int r = std::max(1, static_cast<int>(std::lround(options.silhouette_width * frame.s)));
   const float jump = static_cast<float>(0.04 * bounding_sphere(V).radius);
   std::vector<char> contour(frame.depth.size(), 0);
+#pragma omp parallel for schedule(dynamic, 8)
   for (int y = 0; y < frame.h; ++y)
     for (int x = 0; x < frame.w; ++x) {
       const float d = frame.depth[frame.index(x, y)];
