@@ -434,6 +434,7 @@ class Bench:
                 res["note"] = (f"The capped run ({cap} outer iteration{'s' if cap != 1 else ''}, {last['wall']:.1f} s) "
                                "left room for a full run in the pair's budget; these are the full run's figures.")
                 res["runs"], res["cap"] = [full], None
+                res["circle"] = [run_map(self.liftmap, a, b, lm, CIRCLE_START_ARGS, self.budget.left())]
             except (TimedOut, RuntimeError) as e:
                 res["note"] = f"A full run was attempted after the capped one and did not finish: {e}."
         else:
