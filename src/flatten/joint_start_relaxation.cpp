@@ -8,8 +8,7 @@ SymmetricDirichletResult relax_joint_start(const ConvexSubproblem& problem, cons
                                            const JointStartRelaxationOptions& options) {
   std::vector<SymmetricDirichletTerm> terms;
   for (const SubproblemMesh& mesh : problem.meshes) {
-    terms.push_back(
-        {.jacobian = &mesh.jacobian, .F = &mesh.F, .slot = &mesh.slot, .weight = 1, .own_solve = true});
+    terms.push_back({.jacobian = &mesh.jacobian, .F = &mesh.F, .slot = &mesh.slot, .weight = 1, .own_solve = true});
   }
   if (problem.ghosts.F.rows() > 0) {
     const SubproblemMesh& g = problem.ghosts;

@@ -167,9 +167,9 @@ void newton_system(const FaceDerivatives& d, size_t first, const std::vector<std
 
 /// A term's own unknowns (SymmetricDirichletTerm::own_solve) and the system over them.
 struct OwnSolve {
-  size_t first = 0;                          ///< the term's first face in gather_faces' order
-  std::vector<std::array<int, 6>> var;       ///< per face of the term: its own unknown of each corner coordinate, or -1
-  std::vector<int> global;                   ///< own unknown -> the joint system's unknown
+  size_t first = 0;                     ///< the term's first face in gather_faces' order
+  std::vector<std::array<int, 6>> var;  ///< per face of the term: its own unknown of each corner coordinate, or -1
+  std::vector<int> global;              ///< own unknown -> the joint system's unknown
   subproblem::Pattern pattern;
   SparseCholesky cholesky;
 };

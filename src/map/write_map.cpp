@@ -107,16 +107,15 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                      {"optimization_steps", map.flattening.start_steps[k]}});
   }
   const JointStartRelaxation& relax = map.flattening.joint_start;
-  j["flatten"] = {
-      {"start", start},
-      {"joint_start_relaxation",
-       {{"steps", relax.steps},
-        {"energy_before", relax.energy_before},
-        {"energy_after", relax.energy_after},
-        {"seconds", relax.seconds}}},
-      {"iterations", it},
-      {"converged", map.flattening.converged},
-      {"stop_reason", map.flattening.stop_reason}};
+  j["flatten"] = {{"start", start},
+                  {"joint_start_relaxation",
+                   {{"steps", relax.steps},
+                    {"energy_before", relax.energy_before},
+                    {"energy_after", relax.energy_after},
+                    {"seconds", relax.seconds}}},
+                  {"iterations", it},
+                  {"converged", map.flattening.converged},
+                  {"stop_reason", map.flattening.stop_reason}};
   j["seconds"] = {{"cut", map.seconds.cut},
                   {"flatten", map.seconds.flatten},
                   {"lift", map.seconds.lift},

@@ -35,6 +35,22 @@ std::vector<char> boundary_flags(const testing::TestDisk& d) {
   return fixed;
 }
 
+/// n points on the unit circle, evenly spaced: a disk's boundary positions.
+Eigen::MatrixXd unit_circle(size_t n) {
+  Eigen::MatrixXd B(static_cast<Eigen::Index>(n), 2);
+  for (Eigen::Index i = 0; i < B.rows(); ++i) {
+    const double a = 2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(B.rows());
+    B.row(i) << std::cos(a), std::sin(a);
+  }
+  return B;
+}
+
+/// The tube's positions scaled to area pi, as in joint_flatten.
+Eigen::MatrixXd area_pi(const testing::TestDisk& d) {
+  const JacobianOperator rest = jacobian_operator(d.V, d.F);
+  return d.V * std::sqrt(std::numbers::pi / rest.area.sum());
+}
+
 /// A planar disk: a jittered grid of the unit square.
 testing::TestDisk planar_grid(int n) { return testing::jittered_planar_grid(n, n, 0.3, 3); }
 
@@ -61,14 +77,8 @@ TEST(flatten_symmetric_dirichlet, RecoversTheIdentityOfAPlanarDisk) {
 // reported energies are the energy.
 TEST(flatten_symmetric_dirichlet, LowersATubesStartWithoutFlipping) {
   const testing::TestDisk d = testing::capped_tube(6);
-  Eigen::MatrixXd B(static_cast<Eigen::Index>(d.boundary.size()), 2);
-  for (Eigen::Index i = 0; i < B.rows(); ++i) {
-    const double a = 2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(B.rows());
-    B.row(i) << std::cos(a), std::sin(a);
-  }
-  // Area pi, as in joint_flatten.
-  const JacobianOperator rest = jacobian_operator(d.V, d.F);
-  const Eigen::MatrixXd V = d.V * std::sqrt(std::numbers::pi / rest.area.sum());
+  const Eigen::MatrixXd B = unit_circle(d.boundary.size());
+  const Eigen::MatrixXd V = area_pi(d);
   const JacobianOperator op = jacobian_operator(V, d.F);
   const FlatteningStart s = flattening_start(*d.mesh, V, d.boundary, B,
                                              [&](const Eigen::MatrixXd& U) { return symmetric_dirichlet(op, d.F, U); });
@@ -92,13 +102,8 @@ struct TwoTubes {
 
   /// op1: copy 1's rest shape, copy 0's scaled by `scale1` (1: the same data, bitwise).
   explicit TwoTubes(double scale1) {
-    Eigen::MatrixXd B(static_cast<Eigen::Index>(d.boundary.size()), 2);
-    for (Eigen::Index i = 0; i < B.rows(); ++i) {
-      const double a = 2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(B.rows());
-      B.row(i) << std::cos(a), std::sin(a);
-    }
-    const JacobianOperator rest = jacobian_operator(d.V, d.F);
-    const Eigen::MatrixXd V = d.V * std::sqrt(std::numbers::pi / rest.area.sum());
+    const Eigen::MatrixXd B = unit_circle(d.boundary.size());
+    const Eigen::MatrixXd V = area_pi(d);
     op0 = jacobian_operator(V, d.F);
     op1 = jacobian_operator(scale1 * V, d.F);
     const FlatteningStart s = flattening_start(

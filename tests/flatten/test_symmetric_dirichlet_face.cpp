@@ -18,26 +18,29 @@ double psi_reference(const FaceJacobian& j) {
   return J.squaredNorm() + J.inverse().squaredNorm() - 4;
 }
 
+/// (fn(j + h e_k) - fn(j - h e_k)) / 2h: the central difference of fn along coordinate k.
+template <class Fn>
+auto central_difference(const Fn& fn, const FaceJacobian& j, int k, double h) {
+  FaceJacobian p = j, m = j;
+  p(k) += h;
+  m(k) -= h;
+  using Value = decltype(fn(j));  // a value, not an expression of the temporaries fn(p) and fn(m)
+  return Value((fn(p) - fn(m)) / (2 * h));
+}
+
 Eigen::Vector4d gradient_by_differences(const FaceJacobian& j, double h) {
   Eigen::Vector4d g;
-  for (int k = 0; k < 4; ++k) {
-    FaceJacobian p = j, m = j;
-    p(k) += h;
-    m(k) -= h;
-    g(k) = (psi_reference(p) - psi_reference(m)) / (2 * h);
-  }
+  for (int k = 0; k < 4; ++k) g(k) = central_difference(psi_reference, j, k, h);
   return g;
 }
 
 /// The Hessian by central differences of the analytic gradient, projected by a numerical eigendecomposition.
 Eigen::Matrix4d projected_hessian_by_differences(const FaceJacobian& j, double h) {
+  const auto gradient = [](const FaceJacobian& x) -> Eigen::Vector4d {
+    return symmetric_dirichlet_derivatives(x).gradient;
+  };
   Eigen::Matrix4d H;
-  for (int k = 0; k < 4; ++k) {
-    FaceJacobian p = j, m = j;
-    p(k) += h;
-    m(k) -= h;
-    H.col(k) = (symmetric_dirichlet_derivatives(p).gradient - symmetric_dirichlet_derivatives(m).gradient) / (2 * h);
-  }
+  for (int k = 0; k < 4; ++k) H.col(k) = central_difference(gradient, j, k, h);
   H = 0.5 * (H + H.transpose()).eval();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(H);
   return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0).asDiagonal() * eig.eigenvectors().transpose();
@@ -54,11 +57,11 @@ std::vector<FaceJacobian> jacobians() {
     if (j(0) * j(3) - j(1) * j(2) > 0.05) out.push_back(j);
   }
   const double c = std::cos(0.7), s = std::sin(0.7);
-  out.emplace_back(c, -s, s, c);                             // a rotation: s1 = s2 = 1
-  out.emplace_back(1.5 * c, -1.5 * s, 1.5 * s, 1.5 * c);     // a similarity
+  out.emplace_back(c, -s, s, c);                                 // a rotation: s1 = s2 = 1
+  out.emplace_back(1.5 * c, -1.5 * s, 1.5 * s, 1.5 * c);         // a similarity
   out.emplace_back(1.5 * c, -1.5 * s, 1.5 * s + 1e-7, 1.5 * c);  // nearly one
-  out.emplace_back(0.3, 0, 0, 0.2);                           // squeezed: the twist's eigenvalue is negative
-  out.emplace_back(1, 3, 0, 0.5);                             // a shear
+  out.emplace_back(0.3, 0, 0, 0.2);                              // squeezed: the twist's eigenvalue is negative
+  out.emplace_back(1, 3, 0, 0.5);                                // a shear
   return out;
 }
 
@@ -68,8 +71,8 @@ TEST(flatten_symmetric_dirichlet_face, EnergyIsTheDefinitionAndInfiniteWhenFlipp
   }
   EXPECT_TRUE(std::isinf(symmetric_dirichlet_energy(FaceJacobian(1, 0, 0, -1))));
   EXPECT_TRUE(std::isinf(symmetric_dirichlet_energy(FaceJacobian(1, 2, 1, 2))));
-  EXPECT_NEAR(symmetric_dirichlet_energy(FaceJacobian(std::cos(1.0), -std::sin(1.0), std::sin(1.0), std::cos(1.0))),
-              0, 1e-15);
+  EXPECT_NEAR(symmetric_dirichlet_energy(FaceJacobian(std::cos(1.0), -std::sin(1.0), std::sin(1.0), std::cos(1.0))), 0,
+              1e-15);
 }
 
 TEST(flatten_symmetric_dirichlet_face, GradientMatchesDifferences) {
