@@ -61,8 +61,6 @@ Vec6 corners(const Face& face, const Eigen::MatrixXd& X) {
   return x;
 }
 
-double det(const Vec4& j) { return j(0) * j(3) - j(1) * j(2); }
-
 /// E(X), +inf at a flipped face; the faces' terms are summed in face order, whatever the threads.
 double energy(const std::vector<Face>& faces, const Eigen::MatrixXd& X) {
   const auto nf = static_cast<Eigen::Index>(faces.size());
@@ -80,7 +78,7 @@ double energy(const std::vector<Face>& faces, const Eigen::MatrixXd& X) {
 /// The smallest t > 0 with det(j + t dj) = 0, or +inf.
 double flip_root(const Vec4& j, const Vec4& dj) {
   // det(j + t dj) = c0 + c1 t + c2 t^2
-  const double c0 = det(j), c2 = det(dj);
+  const double c0 = jacobian_determinant(j), c2 = jacobian_determinant(dj);
   const double c1 = j(0) * dj(3) + dj(0) * j(3) - j(1) * dj(2) - dj(1) * j(2);
   double root = std::numeric_limits<double>::infinity();
   if (std::abs(c2) < 1e-300) {

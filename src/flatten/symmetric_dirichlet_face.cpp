@@ -10,8 +10,6 @@ namespace liftmap {
 
 namespace {
 
-double det(const FaceJacobian& j) { return j(0) * j(3) - j(1) * j(2); }
-
 /// vec(U M V^T), row-major, for M = [m00 m01; m10 m11].
 Eigen::Vector4d mode(const Eigen::Matrix2d& U, const Eigen::Matrix2d& V, double m00, double m01, double m10,
                      double m11) {
@@ -24,7 +22,7 @@ Eigen::Vector4d mode(const Eigen::Matrix2d& U, const Eigen::Matrix2d& V, double 
 }  // namespace
 
 double symmetric_dirichlet_energy(const FaceJacobian& j) {
-  const double d = det(j);
+  const double d = jacobian_determinant(j);
   if (!(d > 0)) return std::numeric_limits<double>::infinity();
   // |J^-1| = |adj J| / det J = |J| / det J for 2 by 2 matrices.
   return j.squaredNorm() * (1 + 1 / (d * d)) - 4;

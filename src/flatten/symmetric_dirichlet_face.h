@@ -10,6 +10,9 @@ namespace liftmap {
 /// j = (J00, J01, J10, J11): a 2 by 2 Jacobian, row-major (JacobianOperator's layout).
 using FaceJacobian = Eigen::Vector4d;
 
+/// det J = J00 J11 - J01 J10.
+inline double jacobian_determinant(const FaceJacobian& j) { return j(0) * j(3) - j(1) * j(2); }
+
 /// psi(J) = |J|^2 + |J^-1|^2 - 4 = sigma_1^2 + sigma_2^2 + sigma_1^-2 + sigma_2^-2 - 4 (sigma_i the singular values);
 /// +infinity unless det J > 0.
 double symmetric_dirichlet_energy(const FaceJacobian& j);

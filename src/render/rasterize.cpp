@@ -69,6 +69,43 @@ Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   return N;
 }
 
+/// The depth test of rows y_first to y_last: each sample keeps the nearest face covering it (the first of equal
+/// depths), faces in order. xy, z: the vertices' sample positions and depths; faces with a vertex nearer than `near`
+/// are skipped.
+void depth_test_rows(Frame& frame, const Eigen::MatrixXi& F, const std::vector<Eigen::Vector2d>& xy,
+                     const std::vector<double>& z, double near, int y_first, int y_last) {
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
+    if (z[a] <= near || z[b] <= near || z[c] <= near) continue;
+    const double ymin = std::min({xy[a].y(), xy[b].y(), xy[c].y()});
+    const double ymax = std::max({xy[a].y(), xy[b].y(), xy[c].y()});
+    const int y0 = std::max(y_first, static_cast<int>(std::ceil(ymin - 0.5)));
+    const int y1 = std::min(y_last, static_cast<int>(std::floor(ymax - 0.5)));
+    if (y0 > y1) continue;
+    const double area = edge(xy[a], xy[b], xy[c]);
+    if (area == 0.0 || !std::isfinite(area)) continue;
+    const double xmin = std::min({xy[a].x(), xy[b].x(), xy[c].x()});
+    const double xmax = std::max({xy[a].x(), xy[b].x(), xy[c].x()});
+    const int x0 = std::max(0, static_cast<int>(std::ceil(xmin - 0.5)));
+    const int x1 = std::min(frame.w - 1, static_cast<int>(std::floor(xmax - 0.5)));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const Eigen::Vector2d p(x + 0.5, y + 0.5);
+        const double w0 = edge(xy[b], xy[c], p) / area;
+        const double w1 = edge(xy[c], xy[a], p) / area;
+        const double w2 = edge(xy[a], xy[b], p) / area;
+        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+        const double d =
+            frame.perspective() ? 1.0 / (w0 / z[a] + w1 / z[b] + w2 / z[c]) : w0 * z[a] + w1 * z[b] + w2 * z[c];
+        const std::size_t k = frame.index(x, y);
+        if (d < frame.depth[k]) {
+          frame.depth[k] = static_cast<float>(d);
+          frame.face[k] = static_cast<int>(f);
+        }
+      }
+  }
+}
+
 /// Renders the mesh into the frame: visibility by z-buffer, then one shading evaluation per covered sample.
 /// `albedo(f, w)` is the surface colour at perspective-correct barycentric weights w of face f.
 template <class Albedo>
@@ -84,42 +121,12 @@ void draw_mesh(Frame& frame, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   const double near = 1e-9 * bounding_sphere(V).radius;
 
   // The depth test in bands of rows, one thread each: every band sees the faces in order, so a sample keeps the
-  // same face (the nearest, the first of equal depths) whatever the threads.
+  // same face whatever the threads.
   const int bands = std::min(frame.h, 4 * omp_get_max_threads());
 #pragma omp parallel for schedule(dynamic, 1)
   for (int band = 0; band < bands; ++band) {
-    const int band_y0 = static_cast<int>(static_cast<long>(frame.h) * band / bands);
-    const int band_y1 = static_cast<int>(static_cast<long>(frame.h) * (band + 1) / bands) - 1;
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
-      if (z[a] <= near || z[b] <= near || z[c] <= near) continue;
-      const double ymin = std::min({xy[a].y(), xy[b].y(), xy[c].y()});
-      const double ymax = std::max({xy[a].y(), xy[b].y(), xy[c].y()});
-      const int y0 = std::max(band_y0, static_cast<int>(std::ceil(ymin - 0.5)));
-      const int y1 = std::min(band_y1, static_cast<int>(std::floor(ymax - 0.5)));
-      if (y0 > y1) continue;
-      const double area = edge(xy[a], xy[b], xy[c]);
-      if (area == 0.0 || !std::isfinite(area)) continue;
-      const double xmin = std::min({xy[a].x(), xy[b].x(), xy[c].x()});
-      const double xmax = std::max({xy[a].x(), xy[b].x(), xy[c].x()});
-      const int x0 = std::max(0, static_cast<int>(std::ceil(xmin - 0.5)));
-      const int x1 = std::min(frame.w - 1, static_cast<int>(std::floor(xmax - 0.5)));
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const Eigen::Vector2d p(x + 0.5, y + 0.5);
-          const double w0 = edge(xy[b], xy[c], p) / area;
-          const double w1 = edge(xy[c], xy[a], p) / area;
-          const double w2 = edge(xy[a], xy[b], p) / area;
-          if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-          const double d =
-              frame.perspective() ? 1.0 / (w0 / z[a] + w1 / z[b] + w2 / z[c]) : w0 * z[a] + w1 * z[b] + w2 * z[c];
-          const std::size_t k = frame.index(x, y);
-          if (d < frame.depth[k]) {
-            frame.depth[k] = static_cast<float>(d);
-            frame.face[k] = static_cast<int>(f);
-          }
-        }
-    }
+    depth_test_rows(frame, F, xy, z, near, static_cast<int>(static_cast<long>(frame.h) * band / bands),
+                    static_cast<int>(static_cast<long>(frame.h) * (band + 1) / bands) - 1);
   }
 
   const Eigen::MatrixXd N = options.smooth_shading ? vertex_normals(V, F) : Eigen::MatrixXd();
