@@ -26,9 +26,8 @@ struct FlatteningStartOptions {
   /// Plain mean-value Tutte is kept if no face's share of the planar area is below this fraction of its share of
   /// the surface's area (faces that are small on the surface too, such as the cut's slivers, are not squeezed).
   double min_relative_area = 1e-4;
-  /// TutteWeights::drift values tried. On the 60-configuration sweep (bench/RESULTS.md section 6: real pairs, moved
-  /// copies, tentacles up to 8 times as long as wide) the chosen one was 0.5, 1 or 2; on uncut tubes up to 16 times
-  /// as long as wide, 2 or 3 (docs/algorithm.md); 6 and 8, tried before, never. Each costs two solves.
+  /// TutteWeights::drift values tried, each localised and everywhere (two solves each); which ones shapes choose is
+  /// in docs/performance.md ("A map in seconds").
   std::vector<double> drifts{0.5, 1, 2, 3, 4};
 };
 
