@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/overlay.h"
 #include "core/surface_point.h"
 #include "cut/cut_meshes.h"
 #include "flatten/joint_flatten.h"
@@ -134,9 +135,6 @@ MapVerification verify_map(const MapResult& map, const std::vector<VertexId>& la
 /// flattening: sets map.distortion_phi, distortion_psi, distortion_f, distortion_g, f_samples and f_weights.
 /// \pre as verify_map
 void map_distortion(MapResult& map, int samples_per_edge);
-
-/// Which input mesh a point or a map starts from.
-enum class Side { kA, kB };
 
 /// Evaluates the map at any point of an input mesh (texture transfer, sampling): f for a point of A, g for a
 /// point of B.

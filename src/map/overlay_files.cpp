@@ -1,0 +1,126 @@
+#include "map/overlay_files.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "core/errors.h"
+#include "io/output_file.h"
+#include "io/read_mesh.h"
+#include "io/vertex_map.h"
+#include "io/write_mesh.h"
+#include "map/transfer.h"
+
+namespace liftmap {
+
+namespace {
+
+/// A table cell that must be a face index of a mesh with `n_faces` faces.
+int face_index(double x, int n_faces, const std::string& where, const char* mesh) {
+  if (!(x >= 0 && x < n_faces && x == std::floor(x))) {
+    throw InvalidInputError(where + std::to_string(x) + " is not a face index of " + mesh + " (" +
+                            std::to_string(n_faces) + " faces)");
+  }
+  return static_cast<int>(x);
+}
+
+/// Columns c..c+3 of row i: a face and barycentric coordinates that make a point of it.
+SurfacePoint face_point(const Eigen::MatrixXd& T, Eigen::Index i, Eigen::Index c, int n_faces, const std::string& where,
+                        const char* mesh) {
+  constexpr double kTol = BarycentricTolerance::kTolerance;
+  const int f = face_index(T(i, c), n_faces, where, mesh);
+  std::array<double, 3> b{T(i, c + 1), T(i, c + 2), T(i, c + 3)};
+  for (double x : b) {
+    if (!std::isfinite(x) || x < -kTol) {
+      throw InvalidInputError(where + "barycentric coordinate " + std::to_string(x) + " on " + mesh +
+                              " is not a point of its face");
+    }
+  }
+  if (std::abs(b[0] + b[1] + b[2] - 1.0) > kTol) {
+    throw InvalidInputError(where + "barycentric coordinates on " + mesh + " do not sum to 1");
+  }
+  return SurfacePoint::in_face(FaceId(f), clamp_barycentric(b));
+}
+
+Eigen::RowVector3d position(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const SurfacePoint& p) {
+  Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
+  for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * V.row(F(p.face.idx, k));
+  return x;
+}
+
+}  // namespace
+
+std::array<std::string, 2> overlay_table_paths(const std::string& obj_path) {
+  const std::filesystem::path p(obj_path);
+  const std::string stem = (p.parent_path() / p.stem()).string();
+  return {stem + "_points.txt", stem + "_faces.txt"};
+}
+
+void write_overlay(const std::string& obj_path, const Overlay& overlay) {
+  const auto [points_path, faces_path] = overlay_table_paths(obj_path);
+  write_mesh(obj_path, overlay.VA, overlay.F);
+  {
+    OutputFile f(points_path);
+    std::fprintf(f.get(),
+                 "# liftmap overlay: per vertex of %s, its point on A and on B\n"
+                 "# faceA a0 a1 a2 faceB b0 b1 b2 (0-based faces of the input meshes, barycentric coordinates)\n",
+                 std::filesystem::path(obj_path).filename().string().c_str());
+    for (size_t i = 0; i < overlay.on_a.size(); ++i) {
+      const SurfacePoint& a = overlay.on_a[i];
+      const SurfacePoint& b = overlay.on_b[i];
+      std::fprintf(f.get(), "%d %.17g %.17g %.17g %d %.17g %.17g %.17g\n", a.face.idx, a.bary[0], a.bary[1], a.bary[2],
+                   b.face.idx, b.bary[0], b.bary[1], b.bary[2]);
+    }
+    f.close();
+  }
+  OutputFile f(faces_path);
+  std::fprintf(f.get(), "# liftmap overlay: per triangle of %s, the input faces of A and of B containing it\n",
+               std::filesystem::path(obj_path).filename().string().c_str());
+  for (Eigen::Index t = 0; t < overlay.F.rows(); ++t) {
+    std::fprintf(f.get(), "%d %d\n", overlay.face_a(t), overlay.face_b(t));
+  }
+  f.close();
+}
+
+Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                     const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
+  const auto [points_path, faces_path] = overlay_table_paths(obj_path);
+  const TriangleMesh mesh = read_mesh(obj_path);
+  std::vector<int> point_lines, face_lines;
+  const Eigen::MatrixXd P = read_attributes(points_path, &point_lines);
+  const Eigen::MatrixXd T = read_attributes(faces_path, &face_lines);
+  if (P.cols() != 8 || P.rows() != mesh.V.rows()) {
+    throw IoError(points_path + ": expected " + std::to_string(mesh.V.rows()) +
+                  " rows of 8 numbers (one per vertex of " + obj_path + "), found " + std::to_string(P.rows()) +
+                  " rows of " + std::to_string(P.cols()));
+  }
+  if (T.cols() != 2 || T.rows() != mesh.F.rows()) {
+    throw IoError(faces_path + ": expected " + std::to_string(mesh.F.rows()) + " rows of 2 numbers (one per face of " +
+                  obj_path + "), found " + std::to_string(T.rows()) + " rows of " + std::to_string(T.cols()));
+  }
+  Overlay o;
+  o.VA = mesh.V;
+  o.F = mesh.F;
+  o.VB.resize(P.rows(), 3);
+  o.on_a.resize(static_cast<size_t>(P.rows()));
+  o.on_b.resize(static_cast<size_t>(P.rows()));
+  const auto nfa = static_cast<int>(FA.rows()), nfb = static_cast<int>(FB.rows());
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const std::string where = points_path + ":" + std::to_string(point_lines[static_cast<size_t>(i)]) + ": ";
+    o.on_a[static_cast<size_t>(i)] = face_point(P, i, 0, nfa, where, "A");
+    o.on_b[static_cast<size_t>(i)] = face_point(P, i, 4, nfb, where, "B");
+    o.VB.row(i) = position(VB, FB, o.on_b[static_cast<size_t>(i)]);
+  }
+  o.face_a.resize(T.rows());
+  o.face_b.resize(T.rows());
+  for (Eigen::Index t = 0; t < T.rows(); ++t) {
+    const std::string where = faces_path + ":" + std::to_string(face_lines[static_cast<size_t>(t)]) + ": ";
+    o.face_a(t) = face_index(T(t, 0), nfa, where, "A");
+    o.face_b(t) = face_index(T(t, 1), nfb, where, "B");
+  }
+  (void)VA;
+  return o;
+}
+
+}  // namespace liftmap

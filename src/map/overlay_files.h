@@ -1,0 +1,34 @@
+#pragma once
+/// Overlay files (README, "Output folder"): `overlay.obj` and its two tables.
+///
+/// - `overlay.obj`: the overlay as a mesh on A: `v` = position on A, `f` = triangles (1-based, counter-clockwise).
+/// - `overlay_points.txt`: per `v` line of the OBJ, `faceA a0 a1 a2 faceB b0 b1 b2`: the vertex as a point of
+///   input A (0-based face, barycentric coordinates in the order of that face's vertices) and as a point of B.
+/// - `overlay_faces.txt`: per `f` line, `faceA faceB`: the input faces of A and of B containing the triangle.
+/// The two tables are named after the OBJ: `<stem>_points.txt` and `<stem>_faces.txt` in the same folder.
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+
+#include "core/overlay.h"
+
+namespace liftmap {
+
+/// The two tables' paths of an overlay OBJ: {<stem>_points.txt, <stem>_faces.txt}.
+std::array<std::string, 2> overlay_table_paths(const std::string& obj_path);
+
+/// Writes the overlay OBJ and its two tables (full double precision).
+/// \throw IoError if a file cannot be written
+void write_overlay(const std::string& obj_path, const Overlay& overlay);
+
+/// Reads an overlay written by write_overlay, checks it against the input meshes and fills in VB (from the
+/// points on B).
+/// \param VA, FA, VB, FB the input meshes the map was made of
+/// \throw IoError (exit 3) naming the file and line for a missing or malformed file, or tables whose row count
+///        differs from the OBJ's; InvalidInputError (exit 4) naming the file and line for a face index that is
+///        not one of the input mesh's or barycentric coordinates that are not a point of their face.
+Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                     const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
+
+}  // namespace liftmap
