@@ -201,7 +201,12 @@ class LiftedBijection::OneWay {
       return evaluate_edge(e, h == Mesh::halfedge(e) ? t_h : 1.0 - t_h);
     }
     const VertexId from = c[largest];
-    return lifter_.lift_segment(images_[from], x(from), z);
+    long double zx = 0, zy = 0;
+    for (size_t k = 0; k < 3; ++k) {
+      zx += static_cast<long double>(bary[k]) * x(c[k]).x();
+      zy += static_cast<long double>(bary[k]) * x(c[k]).y();
+    }
+    return lifter_.refine_coordinates(lifter_.lift_segment(images_[from], x(from), z), zx, zy);
   }
 
   Mesh source_;

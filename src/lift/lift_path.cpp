@@ -70,6 +70,31 @@ SurfacePoint PathLifter::face_point(FaceId f, const Eigen::Vector2d& z) const {
   return SurfacePoint::in_face(f, w);
 }
 
+SurfacePoint PathLifter::refine_coordinates(const SurfacePoint& p, long double zx, long double zy) const {
+  using L = long double;
+  if (p.kind == SurfacePoint::Kind::kEdge) {
+    const HalfedgeId h0 = Mesh::halfedge(p.edge);
+    const Eigen::Vector2d& a = position(mesh_.tail(h0));
+    const Eigen::Vector2d& b = position(mesh_.head(h0));
+    const L dx = L(b.x()) - a.x(), dy = L(b.y()) - a.y();
+    const L t = ((zx - a.x()) * dx + (zy - a.y()) * dy) / (dx * dx + dy * dy);
+    return SurfacePoint::on_edge(p.edge, std::clamp(static_cast<double>(t), 0.0, 1.0));
+  }
+  if (p.kind != SurfacePoint::Kind::kFace) return p;
+  const auto fv = mesh_.face_vertices(p.face);
+  std::array<L, 3> w{};
+  L sum = 0;
+  for (size_t k = 0; k < 3; ++k) {
+    const Eigen::Vector2d& u = position(fv[(k + 1) % 3]);
+    const Eigen::Vector2d& v = position(fv[(k + 2) % 3]);
+    w[k] = std::max(L(0), (L(u.x()) - zx) * (L(v.y()) - zy) - (L(u.y()) - zy) * (L(v.x()) - zx));
+    sum += w[k];
+  }
+  if (!(sum > 0)) return p;
+  return SurfacePoint::in_face(
+      p.face, {static_cast<double>(w[0] / sum), static_cast<double>(w[1] / sum), static_cast<double>(w[2] / sum)});
+}
+
 SurfacePoint PathLifter::edge_point(HalfedgeId h, const Eigen::Vector2d& z) const {
   const EdgeId e = Mesh::edge(h);
   const HalfedgeId h0 = Mesh::halfedge(e);

@@ -72,6 +72,12 @@ class PathLifter {
   /// floating point and clamped to the face (exact for z inside Psi(f) up to rounding).
   [[nodiscard]] SurfacePoint face_point(FaceId f, const Eigen::Vector2d& z) const;
 
+  /// The coordinates of a point of the element of `p` (a point found by lifting z) recomputed from z given in
+  /// extended precision: barycentric coordinates of a face point, the parameter of an edge point (a vertex is
+  /// returned as it is). Flattened faces can be far smaller than the flattening, so z's rounding to double, at
+  /// the scale of the whole flattening, would dominate their coordinates.
+  [[nodiscard]] SurfacePoint refine_coordinates(const SurfacePoint& p, long double zx, long double zy) const;
+
   /// Psi at vertex v.
   [[nodiscard]] const Eigen::Vector2d& position(VertexId v) const { return psi_[static_cast<size_t>(v.idx)]; }
   [[nodiscard]] const Mesh& mesh() const { return mesh_; }

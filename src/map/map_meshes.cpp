@@ -19,6 +19,7 @@
 #include "flatten/distortion.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
+#include "map/map_overlay.h"
 #include "map/thread_count_scope.h"
 
 namespace liftmap {
@@ -308,6 +309,38 @@ void lift_stage(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eige
   progress("lift", "done in " + std::to_string(r.seconds.lift) + " s");
 }
 
+/// The common refinement of A and B under the map (overlay_of_map).
+void overlay_stage(const Progress& progress, MapResult& r) {
+  const auto t0 = Clock::now();
+  progress("overlay", "intersecting the two flattenings");
+  r.overlay = overlay_of_map(r, &r.overlay_agreement);
+  r.seconds.overlay = seconds_since(t0);
+  progress("overlay", "done in " + std::to_string(r.seconds.overlay) + " s: " + std::to_string(r.overlay.F.rows()) +
+                          " triangles, " + std::to_string(r.overlay.VA.rows()) + " vertices");
+}
+
+}  // namespace
+
+namespace {
+
+/// The overlay's checks (check_overlay) and the agreement of the map with it at every overlay vertex.
+void verify_overlay(const MapResult& r, double sqrt_area_a, double sqrt_area_b, MapVerification& ver) {
+  const MapIndex& index = *r.index;
+  ver.overlay = check_overlay(r.overlay, index.VA, index.FA, index.VB, index.FB);
+  ver.overlay_vertex_error = r.overlay_agreement / std::min(sqrt_area_a, sqrt_area_b);
+  const OverlayCheck& c = ver.overlay;
+  auto require = [&](bool ok, const std::string& what) {
+    if (!ok) ver.failures.push_back(what);
+  };
+  require(std::max(c.area_error_a, c.area_error_b) < 1e-12,
+          "overlay area error " + figure(std::max(c.area_error_a, c.area_error_b)) + " >= 1e-12");
+  require(c.uncovered_faces_a + c.uncovered_faces_b == 0,
+          "the overlay leaves " + std::to_string(c.uncovered_faces_a + c.uncovered_faces_b) + " input faces uncovered");
+  require(c.flipped_a + c.flipped_b == 0,
+          "the overlay has " + std::to_string(c.flipped_a + c.flipped_b) + " flipped or zero-area triangles");
+  require(ver.overlay_vertex_error < 1e-12, "overlay vertex error " + figure(ver.overlay_vertex_error) + " >= 1e-12");
+}
+
 }  // namespace
 
 MapVerification verify_map(const MapResult& r, const std::vector<VertexId>& landmarks_a,
@@ -370,6 +403,7 @@ MapVerification verify_map(const MapResult& r, const std::vector<VertexId>& land
   require(ver.lifting_residual < 1e-9, "lifting residual " + figure(ver.lifting_residual) + " >= 1e-9");
   require(ver.round_trip_error < 1e-9, "round trip error " + figure(ver.round_trip_error) + " >= 1e-9");
   require(ver.landmark_error < 1e-12, "landmark error " + figure(ver.landmark_error) + " >= 1e-12");
+  if (r.overlay.F.rows() > 0) verify_overlay(r, sqrt_area_a, sqrt_area_b, ver);
   ver.passed = ver.failures.empty();
 
   return ver;
@@ -414,6 +448,7 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   cut_stage(VA, FA, VB, FB, landmarks_a, landmarks_b, options, progress, r);
   flatten_stage(options, progress, r);
   lift_stage(VA, FA, VB, FB, options, progress, r);
+  if (options.overlay) overlay_stage(progress, r);
   const auto t0 = Clock::now();
   r.verification = verify_map(r, landmarks_a, landmarks_b);
   map_distortion(r, options.distortion_samples_per_edge);
@@ -456,6 +491,11 @@ SurfacePoint evaluate_map(const MapResult& map, Side side, const SurfacePoint& x
   const SurfacePoint on_disk = from.to_disk(as_face_point(from_a ? index.input_a : index.input_b, x));
   const SurfacePoint image = from_a ? map.bijection->evaluate_f(on_disk) : map.bijection->evaluate_g(on_disk);
   return to.to_input(from_a ? map.disk_b : map.disk_a, image);
+}
+
+SurfacePoint disk_to_input(const MapResult& map, Side side, const SurfacePoint& x) {
+  const bool a = side == Side::kA;
+  return (a ? *map.index->a : *map.index->b).to_input(a ? map.disk_a : map.disk_b, x);
 }
 
 }  // namespace liftmap

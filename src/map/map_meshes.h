@@ -15,6 +15,7 @@
 #include "cut/cut_meshes.h"
 #include "flatten/joint_flatten.h"
 #include "lift/lift_map.h"
+#include "map/check_overlay.h"
 
 namespace liftmap {
 
@@ -26,6 +27,9 @@ struct MapOptions {
   /// Distortion of the maps f and g is measured by dense sampling: each face is split into n^2 sub-triangles
   /// and the map is evaluated at their centroids, each weighted by its area.
   int distortion_samples_per_edge = 2;
+  /// Compute the overlay (overlay_of_map: the common refinement of A and B on which the map is affine) and check it
+  /// in the verification.
+  bool overlay = true;
   /// Threads of the per-face work while map_meshes runs, 1 to MapOptionLimits::max_threads(); 0: the calling
   /// thread's OpenMP setting. Set on the calling thread only and restored before map_meshes returns.
   int threads = 0;
@@ -78,13 +82,17 @@ struct MapVerification {
   double lifting_residual = 0;        ///< max |Psi(f(x)) - Phi(x)| and |Phi(g(y)) - Psi(y)| over vertices, / diameter
   double round_trip_error = 0;        ///< max |g(f(v)) - v| and |f(g(w)) - w| in R^3 over input vertices, / sqrt(area)
   double landmark_error = 0;          ///< max distance in R^3 from f(landmark) to its partner (and for g), / sqrt(area)
+  /// With MapOptions::overlay: its checks (check_overlay) and MapResult::overlay_agreement / sqrt(area) (an overlay
+  /// vertex's point on one side against the bijection's image of its point on the other).
+  OverlayCheck overlay;
+  double overlay_vertex_error = 0;
   bool passed = false;
   std::vector<std::string> failures;  ///< one line per failed check
 };
 
 /// Wall time of each stage, seconds.
 struct MapTimings {
-  double cut = 0, flatten = 0, lift = 0, verify = 0, total = 0;
+  double cut = 0, flatten = 0, lift = 0, overlay = 0, verify = 0, total = 0;
 };
 
 struct MapIndex;  // translation between the input meshes and their disks (defined in map_meshes.cpp)
@@ -101,6 +109,8 @@ struct MapResult {
   std::vector<SurfacePoint> b_to_a;      ///< per input vertex of B, its image as a face point of input A
   std::vector<SurfacePoint> cut_a_to_b;  ///< per cut vertex of A, its image as a face point of disk_b
   std::vector<SurfacePoint> cut_b_to_a;  ///< per cut vertex of B, its image as a face point of disk_a
+  Overlay overlay;                       ///< the common refinement of A and B (empty without MapOptions::overlay)
+  double overlay_agreement = 0;          ///< overlay_of_map's `agreement` (absolute, in the inputs' units)
 
   DistortionStats distortion_phi, distortion_psi;  ///< per face of the flattenings
   DistortionStats distortion_f, distortion_g;      ///< of the maps, by dense sampling
@@ -143,5 +153,9 @@ void map_distortion(MapResult& map, int samples_per_edge);
 /// \return its image as a face point of the other input mesh
 /// \throw PipelineError if the point cannot be located (a face point outside its face)
 SurfacePoint evaluate_map(const MapResult& map, Side side, const SurfacePoint& x);
+
+/// A point of a cut disk (disk_a for kA, disk_b for kB; any kind) as a face point of that side's input mesh.
+/// \pre `map` has its cut and bijection
+SurfacePoint disk_to_input(const MapResult& map, Side side, const SurfacePoint& x);
 
 }  // namespace liftmap

@@ -11,6 +11,7 @@
 #include "io/output_file.h"
 #include "io/vertex_map.h"
 #include "io/write_mesh.h"
+#include "map/overlay_files.h"
 #include "map/write_figures.h"
 
 namespace liftmap {
@@ -41,7 +42,8 @@ std::vector<std::string> map_output_names() {
   std::vector<std::string> names = {"A_to_B.txt", "B_to_A.txt", "A_to_B.ijv", "B_to_A.ijv"};
   for (std::string& name : cut_output_names()) names.push_back(std::move(name));
   for (const char* name : {"cut_A_to_B.txt", "cut_B_to_A.txt", "render.png", "distortion.png", "A_textured.obj",
-                           "A_textured.mtl", "B_textured.obj", "B_textured.mtl", "texture.png", "report.json"}) {
+                           "A_textured.mtl", "B_textured.obj", "B_textured.mtl", "texture.png", "overlay.obj",
+                           "overlay_points.txt", "overlay_faces.txt", "report.json"}) {
     names.emplace_back(name);
   }
   return names;
@@ -116,11 +118,8 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                   {"iterations", it},
                   {"converged", map.flattening.converged},
                   {"stop_reason", map.flattening.stop_reason}};
-  j["seconds"] = {{"cut", map.seconds.cut},
-                  {"flatten", map.seconds.flatten},
-                  {"lift", map.seconds.lift},
-                  {"verify", map.seconds.verify},
-                  {"total", map.seconds.total}};
+  j["seconds"] = {{"cut", map.seconds.cut},         {"flatten", map.seconds.flatten}, {"lift", map.seconds.lift},
+                  {"overlay", map.seconds.overlay}, {"verify", map.seconds.verify},   {"total", map.seconds.total}};
   j["distortion"] = {
       {"measure", "per face max(Sigma, 1/sigma), area-weighted, both meshes scaled to the same area"},
       {"Phi", stats_json(map.distortion_phi)},
@@ -139,6 +138,20 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                        {"lifting_residual", v.lifting_residual},
                        {"round_trip_error", v.round_trip_error},
                        {"landmark_error", v.landmark_error}};
+  if (map.overlay.F.rows() > 0) {
+    const OverlayCheck& c = v.overlay;
+    j["overlay"] = {{"vertices", map.overlay.VA.rows()},
+                    {"triangles", map.overlay.F.rows()},
+                    {"area_error_A", c.area_error_a},
+                    {"area_error_B", c.area_error_b},
+                    {"max_face_area_error_A", c.face_area_error_a},
+                    {"max_face_area_error_B", c.face_area_error_b},
+                    {"uncovered_faces_A", c.uncovered_faces_a},
+                    {"uncovered_faces_B", c.uncovered_faces_b},
+                    {"flipped_triangles_A", c.flipped_a},
+                    {"flipped_triangles_B", c.flipped_b},
+                    {"vertex_error", v.overlay_vertex_error}};
+  }
   return j;
 }
 
@@ -163,6 +176,13 @@ Eigen::MatrixXi faces_as_given(const TriangleMesh& mesh, bool reversed) {
   Eigen::MatrixXi F = mesh.F;
   if (reversed) F.col(1).swap(F.col(2));
   return F;
+}
+
+/// The overlay with its points' barycentric coordinates in the order of the inputs' faces as given.
+Overlay overlay_in_given_order(Overlay o, const MapInputs& in) {
+  o.on_a = images_in_given_order(std::move(o.on_a), in.reversed_a);
+  o.on_b = images_in_given_order(std::move(o.on_b), in.reversed_b);
+  return o;
 }
 
 std::string in_folder(const std::string& dir, const std::string& name) {
@@ -195,6 +215,7 @@ void write_map_folder(const std::string& dir, const MapResult& map, const MapInp
                    "B: " + std::filesystem::path(in.name_b).filename().string());
   write_distortion_histogram(in_folder(dir, "distortion.png"), map);
   write_textured_meshes(dir, map);
+  if (map.overlay.F.rows() > 0) write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in));
   // Last: a folder with a report.json holds every file of this run.
   OutputFile file(in_folder(dir, "report.json"));
   const std::string text = report.dump(2) + '\n';

@@ -1,0 +1,60 @@
+#include "map/check_overlay.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace liftmap {
+
+namespace {
+
+Eigen::Vector3d corner(const Eigen::MatrixXd& V, int i) { return V.row(i).transpose(); }
+
+/// Area vector (n * area) of a triangle.
+Eigen::Vector3d area_vector(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return 0.5 * (b - a).cross(c - a);
+}
+
+}  // namespace
+
+OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                           const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
+  OverlayCheck c;
+  auto one_side = [&](const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Side side, double& total_error,
+                      double& face_error, int& uncovered, int& flipped) {
+    Eigen::VectorXd covered = Eigen::VectorXd::Zero(F.rows());
+    Eigen::VectorXi count = Eigen::VectorXi::Zero(F.rows());
+    for (Eigen::Index t = 0; t < overlay.F.rows(); ++t) {
+      const int f = side == Side::kA ? overlay.face_a(t) : overlay.face_b(t);
+      const auto w = corner_barycentrics(overlay, F, side, static_cast<int>(t));
+      std::array<Eigen::Vector3d, 3> p;
+      for (size_t k = 0; k < 3; ++k) {
+        p[k] = w[k][0] * corner(V, F(f, 0)) + w[k][1] * corner(V, F(f, 1)) + w[k][2] * corner(V, F(f, 2));
+      }
+      const Eigen::Vector3d n = area_vector(p[0], p[1], p[2]);
+      const Eigen::Vector3d nf = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2)));
+      const double signed_area = n.dot(nf.normalized());
+      if (!(signed_area > 0)) ++flipped;
+      covered(f) += signed_area;
+      ++count(f);
+    }
+    double total = 0, sum = 0;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      const double a = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2))).norm();
+      total += a;
+      sum += covered(f);
+      if (count(f) == 0) ++uncovered;
+    }
+    const double mean = total / static_cast<double>(F.rows());
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      const double a = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2))).norm();
+      face_error = std::max(face_error, std::abs(covered(f) - a) / mean);
+    }
+    total_error = std::abs(sum - total) / total;
+  };
+  one_side(VA, FA, Side::kA, c.area_error_a, c.face_area_error_a, c.uncovered_faces_a, c.flipped_a);
+  one_side(VB, FB, Side::kB, c.area_error_b, c.face_area_error_b, c.uncovered_faces_b, c.flipped_b);
+  return c;
+}
+
+}  // namespace liftmap

@@ -1,0 +1,85 @@
+#include "map/map_overlay.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "lift/disk_overlay.h"
+
+namespace liftmap {
+
+namespace {
+
+/// An element of a cut disk named by the closed refined mesh's elements, so that the two copies of a cut-path
+/// vertex or edge get one name: {kind, refined vertex or face, refined vertex or -1}.
+std::array<int, 3> refined_key(const Mesh& disk, const Eigen::VectorXi& cut_to_refined, const SurfacePoint& p) {
+  switch (p.kind) {
+    case SurfacePoint::Kind::kVertex:
+      return {0, cut_to_refined(p.vertex.idx), -1};
+    case SurfacePoint::Kind::kEdge: {
+      const HalfedgeId h = Mesh::halfedge(p.edge);
+      const int a = cut_to_refined(disk.tail(h).idx), b = cut_to_refined(disk.head(h).idx);
+      return {1, std::min(a, b), std::max(a, b)};
+    }
+    case SurfacePoint::Kind::kFace:
+      return {2, p.face.idx, -1};
+  }
+  return {-1, -1, -1};
+}
+
+/// Max over the disk overlay's vertices of |f(x_M) - x_N| and |g(x_N) - x_M| in R^3.
+double disk_agreement(const MapResult& map, const DiskOverlay& disk) {
+  double worst = 0;
+  for (size_t i = 0; i < disk.on_m.size(); ++i) {
+    const auto on_b = interpolate(map.disk_b, map.disk_vb, disk.on_n[i]);
+    const auto on_a = interpolate(map.disk_a, map.disk_va, disk.on_m[i]);
+    const auto f = interpolate(map.disk_b, map.disk_vb, map.bijection->evaluate_f(disk.on_m[i]));
+    const auto g = interpolate(map.disk_a, map.disk_va, map.bijection->evaluate_g(disk.on_n[i]));
+    worst = std::max({worst, (f - on_b).norm(), (g - on_a).norm()});
+  }
+  return worst;
+}
+
+}  // namespace
+
+Overlay overlay_of_map(const MapResult& map, double* agreement) {
+  const DiskOverlay disk =
+      overlay_disks(*map.bijection, map.disk_a, map.flattening.Phi, map.disk_b, map.flattening.Psi);
+  if (agreement != nullptr) *agreement = disk_agreement(map, disk);
+  std::map<std::array<int, 6>, int> ids;
+  std::vector<int> new_id(disk.on_m.size());
+  std::vector<size_t> first;  // a disk vertex of each overlay vertex
+  for (size_t i = 0; i < disk.on_m.size(); ++i) {
+    const auto ka = refined_key(map.disk_a, map.cut.a.cut_to_refined, disk.on_m[i]);
+    const auto kb = refined_key(map.disk_b, map.cut.b.cut_to_refined, disk.on_n[i]);
+    const auto [it, fresh] =
+        ids.emplace(std::array<int, 6>{ka[0], ka[1], ka[2], kb[0], kb[1], kb[2]}, static_cast<int>(first.size()));
+    if (fresh) first.push_back(i);
+    new_id[i] = it->second;
+  }
+  Overlay o;
+  const auto nv = static_cast<Eigen::Index>(first.size());
+  o.VA.resize(nv, 3);
+  o.VB.resize(nv, 3);
+  o.on_a.resize(first.size());
+  o.on_b.resize(first.size());
+  for (Eigen::Index v = 0; v < nv; ++v) {
+    const size_t i = first[static_cast<size_t>(v)];
+    o.on_a[static_cast<size_t>(v)] = disk_to_input(map, Side::kA, disk.on_m[i]);
+    o.on_b[static_cast<size_t>(v)] = disk_to_input(map, Side::kB, disk.on_n[i]);
+    o.VA.row(v) = interpolate(map.disk_a, map.disk_va, disk.on_m[i]);
+    o.VB.row(v) = interpolate(map.disk_b, map.disk_vb, disk.on_n[i]);
+  }
+  const auto nt = static_cast<Eigen::Index>(disk.triangles.size());
+  o.F.resize(nt, 3);
+  o.face_a.resize(nt);
+  o.face_b.resize(nt);
+  for (Eigen::Index t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) o.F(t, k) = new_id[static_cast<size_t>(disk.triangles[static_cast<size_t>(t)][k])];
+    o.face_a(t) = map.cut.a.face_to_input(disk.face_m[static_cast<size_t>(t)]);
+    o.face_b(t) = map.cut.b.face_to_input(disk.face_n[static_cast<size_t>(t)]);
+  }
+  return o;
+}
+
+}  // namespace liftmap
