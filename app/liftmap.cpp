@@ -27,6 +27,7 @@
 #include "map/map_arguments.h"
 #include "map/map_files.h"
 #include "map/map_meshes.h"
+#include "map/overlay_files.h"
 #include "map/transfer.h"
 #include "map/write_map.h"
 
@@ -289,6 +290,7 @@ int run_batch(const BatchJob& job) {
 
 struct TransferJob {
   std::string map_path, onto_path, data_path, connectivity_path, out_path;
+  bool exact = false;  ///< transfer mesh: map_path is a map's overlay.obj
 };
 
 int run_transfer_attributes(const TransferJob& job) {
@@ -304,21 +306,43 @@ int run_transfer_attributes(const TransferJob& job) {
   return liftmap::kExitOk;
 }
 
-int run_transfer_mesh(const TransferJob& job) {
-  liftmap::refuse_overwriting_inputs(job.out_path, {job.map_path, job.onto_path, job.connectivity_path});
-  const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
+/// The mesh to place on ONTO and the points of ONTO its vertices go to: the source's connectivity through a
+/// map file, or (--exact) the overlay, A's surface refined so that the map is affine on every triangle.
+struct PlacedMesh {
+  Eigen::MatrixXi F;
+  std::vector<liftmap::SurfacePoint> points;
+  Eigen::VectorXi containing;  ///< --exact: the face of ONTO holding each triangle
+};
+
+PlacedMesh mesh_to_place(const TransferJob& job, const liftmap::TriangleMesh& onto) {
   const liftmap::TriangleMesh source = liftmap::read_mesh(job.connectivity_path);
-  const auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
+  if (job.exact) {
+    liftmap::Overlay o = liftmap::read_overlay(job.map_path, source.V, source.F, onto.V, onto.F);
+    return {std::move(o.F), std::move(o.on_b), std::move(o.face_b)};
+  }
+  auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
   if (points.size() != static_cast<size_t>(source.V.rows())) {
     throw liftmap::InvalidInputError(job.map_path + ": " + std::to_string(points.size()) + " lines, but " +
                                      job.connectivity_path + " has " + std::to_string(source.V.rows()) + " vertices");
   }
+  return {source.F, std::move(points), {}};
+}
+
+int run_transfer_mesh(const TransferJob& job) {
+  std::vector<std::string> inputs = {job.map_path, job.onto_path, job.connectivity_path};
+  if (job.exact) {
+    for (const std::string& table : liftmap::overlay_table_paths(job.map_path)) inputs.push_back(table);
+  }
+  liftmap::refuse_overwriting_inputs(job.out_path, inputs);
+  const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
+  const PlacedMesh source = mesh_to_place(job, onto);
+  const auto& points = source.points;
   const Eigen::MatrixXd placed = liftmap::interpolate_at(onto.F, onto.V, points);
   liftmap::write_mesh(job.out_path, placed, source.F);
   // Folded triangles: reported and listed (one face index per line) next to the output, never silently.
-  const std::vector<int> folded = liftmap::folded_faces(source.F, placed, onto.V, onto.F, points);
+  const std::vector<int> folded = liftmap::folded_faces(source.F, placed, onto.V, onto.F, points, source.containing);
   const std::string folded_path = job.out_path + ".folded.txt";
-  liftmap::refuse_overwriting_inputs(folded_path, {job.map_path, job.onto_path, job.connectivity_path});
+  liftmap::refuse_overwriting_inputs(folded_path, inputs);
   std::ofstream list(folded_path);
   list << "# faces of " << job.connectivity_path << " folded against the surface of " << job.onto_path << ": "
        << folded.size() << " of " << source.F.rows() << "\n";
@@ -399,6 +423,9 @@ int run(int argc, char** argv) {
   transfer_attributes->add_option("--data", transfer_job.data_path, "One row of numbers per vertex of ONTO")
       ->required();
   transfer_mesh->add_option("--connectivity", transfer_job.connectivity_path, "The map's source mesh")->required();
+  transfer_mesh->add_flag("--exact", transfer_job.exact,
+                          "MAP is a map folder's overlay.obj: write the source's surface refined by the overlay, "
+                          "on which the map is affine (no triangle folds)");
 
   std::string eval_map, eval_truth, eval_target;
   CLI::App* eval = app.add_subcommand("eval", "Compare a map file with a ground-truth map file into the same mesh");

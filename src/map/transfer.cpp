@@ -37,7 +37,7 @@ Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& 
 
 std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::MatrixXd& placed,
                               const Eigen::MatrixXd& V_target, const Eigen::MatrixXi& F_target,
-                              const std::vector<SurfacePoint>& points) {
+                              const std::vector<SurfacePoint>& points, const Eigen::VectorXi& containing) {
   const auto unit_normal = [&](int f) -> Eigen::Vector3d {
     const Eigen::Vector3d a = V_target.row(F_target(f, 0)), b = V_target.row(F_target(f, 1)),
                           c = V_target.row(F_target(f, 2));
@@ -50,7 +50,11 @@ std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::Matr
     const Eigen::Vector3d p0 = placed.row(F_source(f, 0)), p1 = placed.row(F_source(f, 1)),
                           p2 = placed.row(F_source(f, 2));
     Eigen::Vector3d surface = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) surface += unit_normal(points[static_cast<size_t>(F_source(f, k))].face.idx);
+    if (containing.size() > 0) {
+      surface = unit_normal(containing(f));
+    } else {
+      for (int k = 0; k < 3; ++k) surface += unit_normal(points[static_cast<size_t>(F_source(f, k))].face.idx);
+    }
     if (!((p1 - p0).cross(p2 - p0).dot(surface) > 0)) folded.push_back(static_cast<int>(f));
   }
   return folded;
