@@ -19,7 +19,9 @@ namespace {
 /// A table cell that must be a face index of a mesh with `n_faces` faces.
 int face_index(double x, int n_faces, const std::string& where, const char* mesh) {
   if (!(x >= 0 && x < n_faces && x == std::floor(x))) {
-    throw InvalidInputError(where + std::to_string(x) + " is not a face index of " + mesh + " (" +
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", x);
+    throw InvalidInputError(where + text + " is not a face index of " + mesh + " (" +
                             std::to_string(n_faces) + " faces)");
   }
   return static_cast<int>(x);
@@ -33,7 +35,9 @@ SurfacePoint face_point(const Eigen::MatrixXd& T, Eigen::Index i, Eigen::Index c
   std::array<double, 3> b{T(i, c + 1), T(i, c + 2), T(i, c + 3)};
   for (double x : b) {
     if (!std::isfinite(x) || x < -kTol) {
-      throw InvalidInputError(where + "barycentric coordinate " + std::to_string(x) + " on " + mesh +
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", x);
+      throw InvalidInputError(where + "barycentric coordinate " + text + " on " + mesh +
                               " is not a point of its face");
     }
   }

@@ -52,4 +52,26 @@ python3 "$(dirname "$0")/make_variant.py" invert "$a" "$tmp/inverted.off"
 expect "transfer mesh, reversed faces" 0 "^liftmap: 1620 of 1620 transferred triangles are folded" -- \
   transfer mesh "$good" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/inv_on_b.obj"
 require "folded list holds every face" test "$(grep -c -v '^#' "$tmp/inv_on_b.obj.folded.txt")" = 1620
+
+# The overlay (issue 32): written with the map, its checks in report.json, and `transfer mesh --exact` places it on B
+# with no folded triangle; damaged overlay tables are refused naming the file and line.
+for f in overlay.obj overlay_points.txt overlay_faces.txt; do require "map wrote $f" test -s "$tmp/m/$f"; done
+require "overlay checks in report.json" python3 -c "
+import json, sys
+o = json.load(open('$tmp/m/report.json'))['overlay']
+sys.exit(not (o['area_error_A'] < 1e-12 and o['area_error_B'] < 1e-12 and o['uncovered_faces_A'] == 0
+              and o['uncovered_faces_B'] == 0 and o['vertex_error'] < 1e-12 and o['triangles'] > 1620))"
+expect "transfer mesh --exact" 0 "^liftmap: 0 of [0-9]+ transferred triangles are folded" -- \
+  transfer mesh --exact "$tmp/m/overlay.obj" --onto "$b" --connectivity "$a" -o "$tmp/exact_on_b.obj"
+mkdir -p "$tmp/ov"
+cp "$tmp/m/overlay.obj" "$tmp/ov/overlay.obj"
+head -n -1 "$tmp/m/overlay_points.txt" >"$tmp/ov/overlay_points.txt"
+cp "$tmp/m/overlay_faces.txt" "$tmp/ov/overlay_faces.txt"
+expect "overlay table one row short" 3 "^liftmap: $tmp/ov/overlay_points.txt: expected [0-9]+ rows of 8 numbers" -- \
+  transfer mesh --exact "$tmp/ov/overlay.obj" --onto "$b" --connectivity "$a" -o "$tmp/short.obj"
+require "nothing written for a short table" test ! -e "$tmp/short.obj"
+cp "$tmp/m/overlay_points.txt" "$tmp/ov/overlay_points.txt"
+awk 'NR == 3 { print "99999 0"; next } { print }' "$tmp/m/overlay_faces.txt" >"$tmp/ov/overlay_faces.txt"
+expect "overlay face out of range" 4 "^liftmap: $tmp/ov/overlay_faces.txt:3: 99999 is not a face index of A" -- \
+  transfer mesh --exact "$tmp/ov/overlay.obj" --onto "$b" --connectivity "$a" -o "$tmp/range.obj"
 finish
