@@ -340,7 +340,9 @@ int run_transfer_mesh(const TransferJob& job) {
   const Eigen::MatrixXd placed = liftmap::interpolate_at(onto.F, onto.V, points);
   liftmap::write_mesh(job.out_path, placed, source.F);
   // Folded triangles: reported and listed (one face index per line) next to the output, never silently.
-  const std::vector<int> folded = liftmap::folded_faces(source.F, placed, onto.V, onto.F, points, source.containing);
+  int rounding_level = 0;
+  const std::vector<int> folded =
+      liftmap::folded_faces(source.F, placed, onto.V, onto.F, points, source.containing, &rounding_level);
   const std::string folded_path = job.out_path + ".folded.txt";
   liftmap::refuse_overwriting_inputs(folded_path, inputs);
   std::ofstream list(folded_path);
@@ -350,6 +352,12 @@ int run_transfer_mesh(const TransferJob& job) {
   if (!list) throw liftmap::IoError(folded_path + ": cannot write file");
   std::fprintf(stderr, "liftmap: %zu of %lld transferred triangles are folded against %s (listed in %s)\n",
                folded.size(), static_cast<long long>(source.F.rows()), job.onto_path.c_str(), folded_path.c_str());
+  if (rounding_level > 0) {
+    std::fprintf(stderr,
+                 "liftmap: %d triangles are thinner than double precision shows (area below 1e-12 of their face's: "
+                 "edges of the two meshes nearly coincide there)\n",
+                 rounding_level);
+  }
   return liftmap::kExitOk;
 }
 

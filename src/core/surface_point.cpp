@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cassert>
+#include <string>
+
+#include "core/errors.h"
 
 namespace liftmap {
 
@@ -90,6 +93,33 @@ std::array<double, 3> clamp_barycentric(std::array<double, 3> w) {
   }
   for (double& x : w) x /= sum;
   return w;
+}
+
+std::array<double, 3> reexpress_in_face(const SurfacePoint& p, const Eigen::MatrixXi& F, int f, bool* exact) {
+  if (exact != nullptr) *exact = true;
+  if (p.face.idx == f) return p.bary;
+  std::array<double, 3> w{0, 0, 0};
+  double lost = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double b = p.bary[static_cast<size_t>(k)];
+    bool found = false;
+    for (int j = 0; j < 3; ++j) {
+      if (F(p.face.idx, k) == F(f, j)) {
+        w[static_cast<size_t>(j)] += b;
+        found = true;
+      }
+    }
+    if (!found) lost += b;
+  }
+  if (lost > 1e-9) {
+    if (exact != nullptr) {
+      *exact = false;
+      return w;
+    }
+    throw PipelineError("face " + std::to_string(f) + " does not hold a point of face " + std::to_string(p.face.idx) +
+                        " (weight " + std::to_string(lost) + " on a vertex it does not have)");
+  }
+  return clamp_barycentric(w);
 }
 
 }  // namespace liftmap

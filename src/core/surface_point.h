@@ -41,4 +41,12 @@ std::array<double, 3> barycentric_in_face(const Mesh& mesh, const SurfacePoint& 
 /// coordinates of a valid face point. \pre some entry of w is positive
 std::array<double, 3> clamp_barycentric(std::array<double, 3> w);
 
+/// The face point `p` (of any face of the mesh with faces F) re-expressed in face f, which holds it: its weights
+/// move to the same vertices of f. Where p lies on an edge or vertex that both faces share this is exact; weights
+/// of rounding size (up to 1e-9) on a vertex f does not have are dropped and the rest renormalised.
+/// \param exact if not null, set to false instead of throwing when f does not hold p (the weights are then
+///        meaningless)
+/// \throw PipelineError if f does not hold p and `exact` is null
+std::array<double, 3> reexpress_in_face(const SurfacePoint& p, const Eigen::MatrixXi& F, int f, bool* exact = nullptr);
+
 }  // namespace liftmap

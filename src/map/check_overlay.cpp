@@ -21,7 +21,7 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
                            const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
   OverlayCheck c;
   auto one_side = [&](const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Side side, double& total_error,
-                      double& face_error, int& uncovered, int& flipped) {
+                      double& face_error, int& uncovered, int& flipped, int& degenerate) {
     Eigen::VectorXd covered = Eigen::VectorXd::Zero(F.rows());
     Eigen::VectorXi count = Eigen::VectorXi::Zero(F.rows());
     for (Eigen::Index t = 0; t < overlay.F.rows(); ++t) {
@@ -34,7 +34,9 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
       const Eigen::Vector3d n = area_vector(p[0], p[1], p[2]);
       const Eigen::Vector3d nf = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2)));
       const double signed_area = n.dot(nf.normalized());
-      if (!(signed_area > 0)) ++flipped;
+      // Cells far thinner than rounding (two maps' edges that nearly coincide) have no reliable sign.
+      if (!(signed_area > -OverlayCheck::kRoundingArea * nf.norm())) ++flipped;
+      if (std::abs(signed_area) <= OverlayCheck::kRoundingArea * nf.norm()) ++degenerate;
       covered(f) += signed_area;
       ++count(f);
     }
@@ -52,8 +54,8 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
     }
     total_error = std::abs(sum - total) / total;
   };
-  one_side(VA, FA, Side::kA, c.area_error_a, c.face_area_error_a, c.uncovered_faces_a, c.flipped_a);
-  one_side(VB, FB, Side::kB, c.area_error_b, c.face_area_error_b, c.uncovered_faces_b, c.flipped_b);
+  one_side(VA, FA, Side::kA, c.area_error_a, c.face_area_error_a, c.uncovered_faces_a, c.flipped_a, c.degenerate_a);
+  one_side(VB, FB, Side::kB, c.area_error_b, c.face_area_error_b, c.uncovered_faces_b, c.flipped_b, c.degenerate_b);
   return c;
 }
 

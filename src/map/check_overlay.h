@@ -15,8 +15,14 @@ struct OverlayCheck {
   double face_area_error_b = 0;  ///< the same on B
   int uncovered_faces_a = 0;     ///< faces of A that hold no overlay triangle
   int uncovered_faces_b = 0;
-  int flipped_a = 0;  ///< triangles whose normal on A points against their face's normal (or have no area)
-  int flipped_b = 0;  ///< the same on B
+  int flipped_a = 0;     ///< triangles whose signed area on A, against their face's normal, is below -kRoundingArea
+                         ///< times the face's area
+  int flipped_b = 0;     ///< the same on B
+  int degenerate_a = 0;  ///< triangles whose area on A is within kRoundingArea of the face's area of zero: cells
+                         ///< where edges of the two meshes nearly coincide, thinner than double precision shows
+  int degenerate_b = 0;  ///< the same on B
+  /// Areas below this fraction of their face's are rounding: their sign is not meaningful.
+  static constexpr double kRoundingArea = 1e-12;
 };
 
 /// Measures an overlay's areas and coverage on both inputs.

@@ -82,7 +82,7 @@ struct MapVerification {
   double lifting_residual = 0;        ///< max |Psi(f(x)) - Phi(x)| and |Phi(g(y)) - Psi(y)| over vertices, / diameter
   double round_trip_error = 0;        ///< max |g(f(v)) - v| and |f(g(w)) - w| in R^3 over input vertices, / sqrt(area)
   double landmark_error = 0;          ///< max distance in R^3 from f(landmark) to its partner (and for g), / sqrt(area)
-  /// With MapOptions::overlay: its checks (check_overlay) and MapResult::overlay_agreement / sqrt(area) (an overlay
+  /// With MapOptions::overlay: its checks (check_overlay) and MapResult::overlay_agreement (an overlay
   /// vertex's point on one side against the bijection's image of its point on the other).
   OverlayCheck overlay;
   double overlay_vertex_error = 0;
@@ -110,7 +110,7 @@ struct MapResult {
   std::vector<SurfacePoint> cut_a_to_b;  ///< per cut vertex of A, its image as a face point of disk_b
   std::vector<SurfacePoint> cut_b_to_a;  ///< per cut vertex of B, its image as a face point of disk_a
   Overlay overlay;                       ///< the common refinement of A and B (empty without MapOptions::overlay)
-  double overlay_agreement = 0;          ///< overlay_of_map's `agreement` (absolute, in the inputs' units)
+  double overlay_agreement = 0;          ///< overlay_of_map's `agreement` (relative to sqrt(area))
 
   DistortionStats distortion_phi, distortion_psi;  ///< per face of the flattenings
   DistortionStats distortion_f, distortion_g;      ///< of the maps, by dense sampling

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/total_area.h"
 #include "lift/disk_overlay.h"
 
 namespace liftmap {
@@ -27,15 +28,32 @@ std::array<int, 3> refined_key(const Mesh& disk, const Eigen::VectorXi& cut_to_r
   return {-1, -1, -1};
 }
 
-/// Max over the disk overlay's vertices of |f(x_M) - x_N| and |g(x_N) - x_M| in R^3.
+/// The position of p on a disk relative to the point o: rounding at the scale of the disk's size, not of its
+/// distance from the origin.
+Eigen::Vector3d relative_position(const Mesh& disk, const Eigen::MatrixXd& V, const SurfacePoint& p,
+                                  const Eigen::Vector3d& o) {
+  const SurfacePoint q = as_face_point(disk, p);
+  const auto fv = disk.face_vertices(q.face);
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < 3; ++k) x += q.bary[k] * (V.row(fv[k].idx).transpose() - o);
+  return x;
+}
+
+/// Distance in R^3 between the image of x under a one-way map (lift) and the point y of the target disk.
+double image_distance(const Mesh& target, const Eigen::MatrixXd& V, const SurfacePoint& image, const SurfacePoint& y) {
+  const Eigen::Vector3d o = V.row(target.face_vertices(as_face_point(target, y).face)[0].idx).transpose();
+  return (relative_position(target, V, image, o) - relative_position(target, V, y, o)).norm();
+}
+
+/// Max over the disk overlay's vertices of |f(x_M) - x_N| / sqrt(area of N^) and |g(x_N) - x_M| / sqrt(area of M^).
 double disk_agreement(const MapResult& map, const DiskOverlay& disk) {
+  const double unit_a = std::sqrt(total_area(map.disk_va, map.cut.a.F_cut));
+  const double unit_b = std::sqrt(total_area(map.disk_vb, map.cut.b.F_cut));
   double worst = 0;
   for (size_t i = 0; i < disk.on_m.size(); ++i) {
-    const auto on_b = interpolate(map.disk_b, map.disk_vb, disk.on_n[i]);
-    const auto on_a = interpolate(map.disk_a, map.disk_va, disk.on_m[i]);
-    const auto f = interpolate(map.disk_b, map.disk_vb, map.bijection->evaluate_f(disk.on_m[i]));
-    const auto g = interpolate(map.disk_a, map.disk_va, map.bijection->evaluate_g(disk.on_n[i]));
-    worst = std::max({worst, (f - on_b).norm(), (g - on_a).norm()});
+    const double ef = image_distance(map.disk_b, map.disk_vb, map.bijection->evaluate_f(disk.on_m[i]), disk.on_n[i]);
+    const double eg = image_distance(map.disk_a, map.disk_va, map.bijection->evaluate_g(disk.on_n[i]), disk.on_m[i]);
+    worst = std::max({worst, ef / unit_b, eg / unit_a});
   }
   return worst;
 }

@@ -21,8 +21,8 @@ int face_index(double x, int n_faces, const std::string& where, const char* mesh
   if (!(x >= 0 && x < n_faces && x == std::floor(x))) {
     char text[32];
     std::snprintf(text, sizeof text, "%.17g", x);
-    throw InvalidInputError(where + text + " is not a face index of " + mesh + " (" +
-                            std::to_string(n_faces) + " faces)");
+    throw InvalidInputError(where + text + " is not a face index of " + mesh + " (" + std::to_string(n_faces) +
+                            " faces)");
   }
   return static_cast<int>(x);
 }
@@ -37,8 +37,7 @@ SurfacePoint face_point(const Eigen::MatrixXd& T, Eigen::Index i, Eigen::Index c
     if (!std::isfinite(x) || x < -kTol) {
       char text[32];
       std::snprintf(text, sizeof text, "%.17g", x);
-      throw InvalidInputError(where + "barycentric coordinate " + text + " on " + mesh +
-                              " is not a point of its face");
+      throw InvalidInputError(where + "barycentric coordinate " + text + " on " + mesh + " is not a point of its face");
     }
   }
   if (std::abs(b[0] + b[1] + b[2] - 1.0) > kTol) {

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "io/output_file.h"
+#include "map/check_overlay.h"
 
 namespace liftmap {
 
@@ -37,7 +38,8 @@ Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& 
 
 std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::MatrixXd& placed,
                               const Eigen::MatrixXd& V_target, const Eigen::MatrixXi& F_target,
-                              const std::vector<SurfacePoint>& points, const Eigen::VectorXi& containing) {
+                              const std::vector<SurfacePoint>& points, const Eigen::VectorXi& containing,
+                              int* rounding_level) {
   const auto unit_normal = [&](int f) -> Eigen::Vector3d {
     const Eigen::Vector3d a = V_target.row(F_target(f, 0)), b = V_target.row(F_target(f, 1)),
                           c = V_target.row(F_target(f, 2));
@@ -52,6 +54,14 @@ std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::Matr
     Eigen::Vector3d surface = Eigen::Vector3d::Zero();
     if (containing.size() > 0) {
       surface = unit_normal(containing(f));
+      const int g = containing(f);
+      const Eigen::Vector3d a = V_target.row(F_target(g, 0)), b = V_target.row(F_target(g, 1)),
+                            c = V_target.row(F_target(g, 2));
+      const double face_area = (b - a).cross(c - a).norm();
+      if (std::abs((p1 - p0).cross(p2 - p0).dot(surface)) <= OverlayCheck::kRoundingArea * face_area) {
+        if (rounding_level != nullptr) ++*rounding_level;
+        continue;
+      }
     } else {
       for (int k = 0; k < 3; ++k) surface += unit_normal(points[static_cast<size_t>(F_source(f, k))].face.idx);
     }

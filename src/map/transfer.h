@@ -28,12 +28,16 @@ Eigen::MatrixXd interpolate_at(const Eigen::MatrixXi& F, const Eigen::MatrixXd& 
 /// \param V_target, F_target the target mesh
 /// \param points #Vs face points of the target, one per source vertex (the map)
 /// \param containing if not empty (#Fs), the target face that holds each placed face whole (an overlay's face_b):
-///        N_f is then that face's unit normal
+///        N_f is then that face's unit normal, and a face whose area is within OverlayCheck::kRoundingArea of its
+///        containing face's area of zero (an overlay cell thinner than double precision shows) is not folded but
+///        counted in `rounding_level`
+/// \param rounding_level if not null, receives the number of such faces
 /// \return indices of the folded faces of `F_source`, increasing
 /// \pre every point's face is a face of `F_target` (interpolate_at has checked it)
 std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::MatrixXd& placed,
                               const Eigen::MatrixXd& V_target, const Eigen::MatrixXi& F_target,
-                              const std::vector<SurfacePoint>& points, const Eigen::VectorXi& containing = {});
+                              const std::vector<SurfacePoint>& points, const Eigen::VectorXi& containing = {},
+                              int* rounding_level = nullptr);
 
 /// Reads a table of numbers: one row of whitespace-separated numbers per line, `#` comments, blank lines
 /// ignored (per-vertex attributes, map files).

@@ -150,6 +150,8 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                     {"uncovered_faces_B", c.uncovered_faces_b},
                     {"flipped_triangles_A", c.flipped_a},
                     {"flipped_triangles_B", c.flipped_b},
+                    {"rounding_level_triangles_A", c.degenerate_a},
+                    {"rounding_level_triangles_B", c.degenerate_b},
                     {"vertex_error", v.overlay_vertex_error}};
   }
   return j;

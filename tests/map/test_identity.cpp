@@ -117,7 +117,7 @@ TEST_P(MovedCopyIsIdentity, ErrorAndDistortion) {
   MapOptions options;
   options.flatten.max_iterations = c.max_iterations;  // the identity holds after any number of outer iterations
   const MapResult map = map_meshes(a.V, a.F, b.mesh.V, b.mesh.F, la, lb, options);
-  EXPECT_TRUE(map.verification.passed);
+  EXPECT_TRUE(map.verification.passed) << (map.verification.failures.empty() ? "" : map.verification.failures.front());
   EXPECT_EQ(map.cut.a.F_cut.rows(), map.cut.b.F_cut.rows()) << "the two cut disks differ";
   const IdentityError e = identity_error(map.a_to_b, a, b);
   EXPECT_LT(e.max, 1e-8) << "mean " << e.mean;
