@@ -348,7 +348,7 @@ struct TextureJob {
 std::string overlay_path_of(const std::string& map_path) {
   std::error_code ec;
   if (!std::filesystem::is_directory(map_path, ec)) return map_path;
-  const std::string obj = (std::filesystem::path(map_path) / "overlay.obj").string();
+  std::string obj = (std::filesystem::path(map_path) / "overlay.obj").string();
   if (!std::filesystem::exists(obj, ec)) {
     throw liftmap::IoError(map_path + ": no overlay.obj in this folder (the output of `liftmap map`)");
   }

@@ -35,7 +35,7 @@ std::string texture_of_material(const std::string& path, const std::string& name
       current = t[1];
     } else if (t[0] == "map_Kd") {
       if (t.size() < 2) r.fail("'map_Kd' without a file name");
-      const std::string image = (std::filesystem::path(path).parent_path() / std::string(t.back())).string();
+      std::string image = (std::filesystem::path(path).parent_path() / std::string(t.back())).string();
       if (current == name) return image;
       if (first.empty()) first = image;
     }

@@ -83,8 +83,12 @@ OverlayIndex index_overlay(const Overlay& o, const TexturedMesh& a, const Textur
   for (size_t t = 0; t < n; ++t) {
     const int ti = static_cast<int>(t);
     index.triangles[static_cast<size_t>(next[static_cast<size_t>(o.face_b(ti))]++)] = ti;
-    index.on_a[t] = corner_barycentrics(o, a.F, Side::kA, ti);
-    index.on_b[t] = corner_barycentrics(o, b.F, Side::kB, ti);
+    try {
+      index.on_a[t] = corner_barycentrics(o, a.F, Side::kA, ti);
+      index.on_b[t] = corner_barycentrics(o, b.F, Side::kB, ti);
+    } catch (const PipelineError& e) {  // a corner recorded in a face that does not touch the triangle's
+      not_this_pair("triangle " + std::to_string(t) + ": " + e.what());
+    }
   }
   return index;
 }

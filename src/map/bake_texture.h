@@ -49,7 +49,8 @@ struct BakeResult {
 /// \param settings size, gutter, sampling, background
 /// \pre texture is not empty; settings.width, height >= 0 and gutter >= 0
 /// \throw InvalidInputError if the overlay does not belong to A and B: a face of A or B out of range, an overlay
-///        vertex whose position on A is not where its face point of A is (1e-6 of A's bounding box), or a face of B
+///        vertex whose position on A is not where its face point of A is (1e-6 of A's bounding box), a triangle
+///        corner recorded in a face that does not touch the triangle's face, or a face of B
 ///        in B's layout that no overlay triangle lies in.
 BakeResult bake_texture(const Overlay& overlay, const TexturedMesh& a, const Image& texture, const TexturedMesh& b,
                         const BakeSettings& settings = {});

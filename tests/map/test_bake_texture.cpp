@@ -404,6 +404,15 @@ TEST(BakeTexture, AnOverlayOfOtherMeshesIsRejected) {
   } catch (const InvalidInputError& e) {
     EXPECT_NE(std::string(e.what()).find("vertex 3"), std::string::npos) << e.what();
   }
+  Overlay elsewhere = p.overlay;  // a corner of triangle 0 recorded on B in a face far from the triangle's
+  const int far_face = (p.overlay.face_b(0) + static_cast<int>(p.b.F.rows()) / 2) % static_cast<int>(p.b.F.rows());
+  elsewhere.on_b[static_cast<size_t>(elsewhere.F(0, 0))] = SurfacePoint::in_face(FaceId(far_face), {0.2, 0.3, 0.5});
+  try {
+    bake_texture(elsewhere, p.a, p.texture, p.b);
+    FAIL() << "a corner off the triangle's face must be rejected";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 0"), std::string::npos) << e.what();
+  }
   Overlay missing = p.overlay;  // the triangles in B's face 0 dropped
   std::vector<int> keep;
   for (Eigen::Index t = 0; t < missing.F.rows(); ++t)
