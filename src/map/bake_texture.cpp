@@ -158,14 +158,21 @@ std::array<Eigen::Vector2d, 3> texel_corners(const TexturedMesh& m, int f, int w
   return c;
 }
 
+/// The texels [first, last] of a row or column of n whose centres (i + 0.5) lie in [lo, hi]; empty if none (UVs far
+/// outside the image are clamped before they become integers).
+std::pair<int, int> texel_range(double lo, double hi, int n) {
+  const double first = std::clamp(std::ceil(lo - 0.5), 0.0, static_cast<double>(n));
+  const double last = std::clamp(std::floor(hi - 0.5), -1.0, static_cast<double>(n - 1));
+  return {static_cast<int>(first), static_cast<int>(last)};
+}
+
 /// The faces of B's layout whose texel-space bounding box meets each row of texel centres.
 std::vector<std::vector<int>> faces_per_row(const TexturedMesh& b, int width, int height) {
   std::vector<std::vector<int>> rows(static_cast<size_t>(height));
   for (int f = 0; f < static_cast<int>(b.F.rows()); ++f) {
     const auto c = texel_corners(b, f, width, height);
     const double y0 = std::min({c[0].y(), c[1].y(), c[2].y()}), y1 = std::max({c[0].y(), c[1].y(), c[2].y()});
-    const int first = std::max(0, static_cast<int>(std::ceil(y0 - 0.5)));
-    const int last = std::min(height - 1, static_cast<int>(std::floor(y1 - 0.5)));
+    const auto [first, last] = texel_range(y0, y1, height);
     for (int y = first; y <= last; ++y) rows[static_cast<size_t>(y)].push_back(f);
   }
   return rows;
@@ -178,8 +185,7 @@ void bake_row(int y, const std::vector<int>& faces, const Overlay& o, const Over
   for (const int fb : faces) {
     const auto c = texel_corners(b, fb, width, r.image.height);
     const double x0 = std::min({c[0].x(), c[1].x(), c[2].x()}), x1 = std::max({c[0].x(), c[1].x(), c[2].x()});
-    const int first = std::max(0, static_cast<int>(std::ceil(x0 - 0.5)));
-    const int last = std::min(width - 1, static_cast<int>(std::floor(x1 - 0.5)));
+    const auto [first, last] = texel_range(x0, x1, width);
     for (int x = first; x <= last; ++x) {
       TexelKind& kind = r.kind[static_cast<size_t>(y) * width + x];
       Weights beta{};

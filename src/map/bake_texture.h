@@ -41,14 +41,13 @@ struct BakeResult {
 
 /// Bakes A's texture into B's UV atlas through the map whose overlay is `overlay`.
 /// Texel (x, y) (x right, y down from the top row) has its centre at u = (x + 0.5) / width,
-/// v = 1 - (y + 0.5) / height, the OBJ convention (v up). A texel centre on an edge shared by two triangles of B's
-/// layout, or by two overlay triangles, takes the first triangle found; both give the same point up to rounding.
-/// \param overlay the common refinement of A and B (read_overlay), faces of `a.F` and `b.F`
-/// \param a mesh A with its UV layout (UV, FT); `texture` is A's image
-/// \param b mesh B with its UV layout: the atlas baked into
-/// \param settings size, gutter, sampling, background
-/// \pre texture is not empty; settings.width, height >= 0 and gutter >= 0
-/// \throw InvalidInputError if the overlay does not belong to A and B: a face of A or B out of range, an overlay
+/// v = 1 - (y + 0.5) / height, the OBJ convention (v up); parts of B's layout outside [0,1]^2 are not baked. A texel
+/// centre on an edge shared by two triangles of B's layout, or by two overlay triangles, takes the first triangle
+/// found; both give the same point up to rounding. \param overlay the common refinement of A and B (read_overlay),
+/// faces of `a.F` and `b.F` \param a mesh A with its UV layout (UV, FT); `texture` is A's image \param b mesh B with
+/// its UV layout: the atlas baked into \param settings size, gutter, sampling, background \pre texture is not empty;
+/// settings.width, height >= 0 and gutter >= 0 \throw InvalidInputError if the overlay does not belong to A and B: a
+/// face of A or B out of range, an overlay
 ///        vertex whose position on A is not where its face point of A is (1e-6 of A's bounding box), a triangle
 ///        corner recorded in a face that does not touch the triangle's face, or a face of B
 ///        in B's layout that no overlay triangle lies in.

@@ -382,6 +382,16 @@ TEST(BakeTexture, GutterFillsTheRingsAroundChartsAndNothingFarther) {
   EXPECT_EQ(bake_texture(p.overlay, p.a, p.texture, p.b, none).gutter_texels, 0);
 }
 
+TEST(BakeTexture, UvsOutsideTheImageAreNotBaked) {
+  Pair p = rotated_pair(1);
+  const int before = bake_texture(p.overlay, p.a, p.texture, p.b).chart_texels;
+  p.b.UV.row(p.b.FT(0, 0)) << 1e300, -1e300;  // face 0's chart now reaches far beyond the image
+  p.b.UV.row(p.b.FT(1, 0)) << 3.0, 0.5;       // face 1's chart partly right of it
+  const BakeResult r = bake_texture(p.overlay, p.a, p.texture, p.b);
+  EXPECT_GT(r.chart_texels, before / 2);
+  EXPECT_LT(r.chart_texels, kSize * kSize);
+}
+
 TEST(BakeTexture, SampleBilinearRepeatsOrClamps) {
   Image t(2, 1, Eigen::Vector3d::Zero());
   t.set(1, 0, Eigen::Vector3d::Ones());
