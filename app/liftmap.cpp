@@ -4,9 +4,12 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -20,9 +23,12 @@
 #include "cut/write_cut.h"
 #include "flatten/sparse_cholesky.h"
 #include "io/landmarks.h"
+#include "io/output_file.h"
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
+#include "io/read_obj_with_uv.h"
 #include "io/write_mesh.h"
+#include "map/bake_texture.h"
 #include "map/batch.h"
 #include "map/map_arguments.h"
 #include "map/map_files.h"
@@ -361,6 +367,81 @@ int run_transfer_mesh(const TransferJob& job) {
   return liftmap::kExitOk;
 }
 
+/// `liftmap transfer texture`: the overlay (a map folder or its overlay.obj), both textured meshes and the outputs.
+struct TextureJob {
+  std::string map_path, from_path, onto_path, texture_path, out_path;
+  int size = 0;
+  liftmap::BakeSettings settings;
+  bool clamp = false;
+};
+
+/// The overlay OBJ of a map folder, or the path itself if it is a file.
+std::string overlay_path_of(const std::string& map_path) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(map_path, ec)) return map_path;
+  std::string obj = (std::filesystem::path(map_path) / "overlay.obj").string();
+  if (!std::filesystem::exists(obj, ec)) {
+    throw liftmap::IoError(map_path + ": no overlay.obj in this folder (the output of `liftmap map`)");
+  }
+  return obj;
+}
+
+/// The image of A's texture: --texture, or the map_Kd of A's material.
+std::string texture_path_of(const TextureJob& job, const liftmap::TexturedMesh& a) {
+  if (!job.texture_path.empty()) return job.texture_path;
+  if (!a.texture_path.empty()) return a.texture_path;
+  const std::string why = a.material_file.empty() ? "it has no mtllib"
+                          : std::filesystem::exists(a.material_file)
+                              ? "its material file " + a.material_file + " has no map_Kd"
+                              : "its material file " + a.material_file + " does not exist";
+  throw liftmap::IoError(job.from_path + ": no texture image (" + why + "); give one with --texture");
+}
+
+/// The baked PNG, and B with its UVs at STEM.obj and STEM.mtl using it (file names relative to the OBJ's folder).
+void write_baked(const std::string& png, const std::string& stem, const liftmap::Image& image,
+                 const liftmap::TexturedMesh& b) {
+  liftmap::write_png(png, image);
+  liftmap::OutputFile mtl(stem + ".mtl");
+  std::fprintf(mtl.get(), "newmtl material\nKd 1 1 1\nmap_Kd %s\n",
+               std::filesystem::path(png).filename().string().c_str());
+  mtl.close();
+  liftmap::write_obj_with_uv(stem + ".obj", b.V, b.F, b.UV, b.FT,
+                             std::filesystem::path(stem + ".mtl").filename().string());
+}
+
+int run_transfer_texture(TextureJob job) {
+  std::string ext = std::filesystem::path(job.out_path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".png")
+    throw liftmap::UsageError(job.out_path + ": the baked texture is written as PNG: -o must end in .png");
+  const std::string overlay_obj = overlay_path_of(job.map_path);
+  const liftmap::TexturedMesh a = liftmap::read_obj_with_uv(job.from_path);
+  const liftmap::TexturedMesh b = liftmap::read_obj_with_uv(job.onto_path);
+  const std::string texture_path = texture_path_of(job, a);
+  const auto tables = liftmap::overlay_table_paths(overlay_obj);
+  // B's OBJ and MTL next to the PNG, named after it.
+  const std::filesystem::path out(job.out_path);
+  const std::string stem = (out.parent_path() / out.stem()).string();
+  const std::vector<std::string> inputs{overlay_obj, tables[0], tables[1], job.from_path, job.onto_path, texture_path};
+  for (const std::string& o : {job.out_path, stem + ".obj", stem + ".mtl"})
+    liftmap::refuse_overwriting_inputs(o, inputs);
+  const liftmap::Overlay overlay = liftmap::read_overlay(overlay_obj, a.V, a.F, b.V, b.F);
+  const liftmap::Image texture = liftmap::read_image(texture_path);
+  if (!out.parent_path().empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(out.parent_path(), ec);
+    if (ec) throw liftmap::IoError(out.parent_path().string() + ": cannot create the output folder: " + ec.message());
+  }
+  job.settings.width = job.settings.height = job.size;
+  job.settings.repeat = !job.clamp;
+  const liftmap::BakeResult baked = liftmap::bake_texture(overlay, a, texture, b, job.settings);
+  write_baked(job.out_path, stem, baked.image, b);
+  std::fprintf(stderr, "liftmap: %d chart texels and %d gutter texels of %d x %d baked into %s (mesh %s.obj)\n",
+               baked.chart_texels, baked.gutter_texels, baked.image.width, baked.image.height, job.out_path.c_str(),
+               stem.c_str());
+  return liftmap::kExitOk;
+}
+
 int run_eval(const std::string& map_path, const std::string& truth_path, const std::string& target_path) {
   const liftmap::TriangleMesh target = liftmap::read_mesh(target_path);
   const auto n_faces = static_cast<int>(target.F.rows());
@@ -435,6 +516,29 @@ int run(int argc, char** argv) {
                           "MAP is a map folder's overlay.obj: write the source's surface refined by the overlay, "
                           "on which the map is affine (no triangle folds)");
 
+  TextureJob texture_job;
+  CLI::App* transfer_texture = transfer->add_subcommand(
+      "texture",
+      "Bake A's texture into B's own UV atlas through a map: a PNG, and B's OBJ/MTL using it (FROM and ONTO: the "
+      "map's A and B as OBJ with vt)");
+  transfer_texture
+      ->add_option("map", texture_job.map_path, "The map's output folder (its overlay.obj) or an overlay OBJ")
+      ->required();
+  transfer_texture->add_option("--from", texture_job.from_path, "Mesh A as OBJ with vt (its MTL's map_Kd: the texture)")
+      ->required();
+  transfer_texture->add_option("--onto", texture_job.onto_path, "Mesh B as OBJ with vt: the atlas baked into")
+      ->required();
+  transfer_texture->add_option("--texture", texture_job.texture_path, "A's texture (PNG or JPEG) instead of map_Kd");
+  transfer_texture->add_option("--size", texture_job.size, "Width and height of the baked texture (default: A's)")
+      ->check(CLI::Range(1, 8192));
+  transfer_texture->add_option("--gutter", texture_job.settings.gutter, "Texels filled around every chart")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  transfer_texture->add_flag("--clamp", texture_job.clamp,
+                             "Clamp A's texture at its edges instead of repeating it (GL_CLAMP_TO_EDGE)");
+  transfer_texture->add_option("-o,--out", texture_job.out_path, "The baked PNG; OUT.obj and OUT.mtl go next to it")
+      ->required();
+
   std::string eval_map, eval_truth, eval_target;
   CLI::App* eval = app.add_subcommand("eval", "Compare a map file with a ground-truth map file into the same mesh");
   eval->add_option("map", eval_map, "Map file")->required();
@@ -457,6 +561,7 @@ int run(int argc, char** argv) {
   }
   if (*transfer_attributes) return run_transfer_attributes(transfer_job);
   if (*transfer_mesh) return run_transfer_mesh(transfer_job);
+  if (*transfer_texture) return run_transfer_texture(texture_job);
   if (*eval) return run_eval(eval_map, eval_truth, eval_target);
   if (*batch) return run_batch(batch_job);
   for (auto [cmd, job] : {std::pair{map, &map_job}, std::pair{cut, &cut_job}}) {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "io/line_reader.h"
 
 // OFF, OBJ and STL are parsed here because their errors must name the line or the count; CGAL's readers only
 // say "failed". PLY (many property layouts, three encodings) goes through CGAL's reader.
@@ -32,95 +33,11 @@ namespace {
 using Point = std::array<double, 3>;
 using Triangle = std::array<int, 3>;
 
-constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
-
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
-
-std::string read_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": is a directory, not a mesh file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError(path + ": read error");
-  return ss.str();
-}
-
-/// Splits text into lines and whitespace-separated tokens, keeping line numbers for messages.
-class LineReader {
- public:
-  /// \param hash_comments whether '#' starts a comment (OFF, OBJ, STL); PLY has none
-  LineReader(const std::string& path, const std::string& text, bool hash_comments = true)
-      : path_(path), text_(text), hash_comments_(hash_comments) {
-    if (text_.rfind(kByteOrderMark, 0) == 0) pos_ = kByteOrderMark.size();  // a UTF-8 byte-order mark
-  }
-
-  /// Advances to the next line that has content (comments after '#' removed); false at end of file.
-  bool next_line() {
-    while (pos_ < text_.size()) {
-      size_t end = text_.find('\n', pos_);
-      if (end == std::string::npos) end = text_.size();
-      std::string_view line(text_.data() + pos_, end - pos_);
-      pos_ = end + 1;
-      ++line_no_;
-      for (char c : line) {
-        const auto u = static_cast<unsigned char>(c);
-        if (u == 0 || (u < 32 && c != '\t' && c != '\r')) fail("not a text line (binary data?)");
-      }
-      if (const size_t hash = line.find('#'); hash_comments_ && hash != std::string_view::npos) {
-        line = line.substr(0, hash);
-      }
-      tokens_.clear();
-      size_t i = 0;
-      while (i < line.size()) {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-        size_t j = i;
-        while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-        if (j > i) tokens_.push_back(line.substr(i, j - i));
-        i = j;
-      }
-      if (!tokens_.empty()) return true;
-    }
-    return false;
-  }
-
-  [[nodiscard]] const std::vector<std::string_view>& tokens() const { return tokens_; }
-  [[nodiscard]] int line_no() const { return line_no_; }
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw IoError(path_ + ":" + std::to_string(line_no_) + ": " + what);
-  }
-
-  double to_double(std::string_view s) const {
-    double x = 0;
-    // from_chars does not accept a leading '+'.
-    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    if (ec != std::errc() || p != s.data() + s.size()) fail("'" + std::string(s) + "' is not a number");
-    return x;
-  }
-
-  long long to_int(std::string_view s) const {
-    long long x = 0;
-    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    if (ec != std::errc() || p != s.data() + s.size()) fail("'" + std::string(s) + "' is not an integer");
-    return x;
-  }
-
- private:
-  const std::string& path_;
-  const std::string& text_;
-  bool hash_comments_ = true;
-  size_t pos_ = 0;
-  int line_no_ = 0;
-  std::vector<std::string_view> tokens_;
-};
 
 TriangleMesh to_matrices(const std::vector<Point>& points, const std::vector<Triangle>& triangles) {
   TriangleMesh m;
@@ -530,7 +447,7 @@ TriangleMesh read_mesh(const std::string& path) {
   }
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(path + ": no such file");
-  return read_mesh_data(read_file(path), path);
+  return read_mesh_data(read_file(path, "mesh file"), path);
 }
 
 }  // namespace liftmap

@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <memory>
 
 // The implementation with internal linkage: a host program that uses stb_image_write itself keeps its own.
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
+// The same for the reader, limited to the two formats textures come in.
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#include <stb_image.h>
 
 #include "core/errors.h"
 #include "io/output_file.h"
@@ -95,6 +103,22 @@ void write_png(const std::string& path, const Image& image) {
   if (stbi_write_png_to_func(write, file.get(), image.width, image.height, 3, image.rgb.data(), image.width * 3) == 0)
     throw IoError(path + ": cannot write PNG");
   file.close();
+}
+
+Image read_image(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw IoError(path + ": no such image file");
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) throw IoError(path + ": cannot open image file");
+  int width = 0, height = 0, channels = 0;
+  const std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_file(file.get(), &width, &height, &channels, 3),
+                                                       &stbi_image_free);
+  if (!data) throw IoError(path + ": cannot read the image (" + stbi_failure_reason() + "; PNG or JPEG expected)");
+  Image image;
+  image.width = width;
+  image.height = height;
+  image.rgb.assign(data.get(), data.get() + static_cast<std::size_t>(width) * height * 3);
+  return image;
 }
 
 }  // namespace liftmap

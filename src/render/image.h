@@ -1,5 +1,5 @@
 #pragma once
-/// An 8-bit RGB raster and its PNG output: what every picture of liftmap is drawn into.
+/// An 8-bit RGB raster, its PNG output and image input: what every picture of liftmap is drawn into, and textures.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -45,5 +45,10 @@ Image downsample(const Image& image, int factor);
 /// Writes `image` as an 8-bit RGB PNG.
 /// \throw InvalidInputError for an empty image; IoError naming the file if it cannot be written.
 void write_png(const std::string& path, const Image& image);
+
+/// Reads a PNG or JPEG image (8 or 16 bits per channel, grey, grey + alpha, RGB or RGBA) as 8-bit RGB: alpha is
+/// dropped, grey is copied to the three channels, 16-bit channels are rounded to 8 bits.
+/// \throw IoError naming the file if it is missing, unreadable or not a PNG or JPEG image stb_image can decode.
+Image read_image(const std::string& path);
 
 }  // namespace liftmap

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "core/errors.h"
 #include "render/png_util.h"
 
@@ -52,6 +54,35 @@ TEST(RenderWritePng, WritesReadableHeader) {
 TEST(RenderWritePng, FailuresAreTyped) {
   EXPECT_THROW(write_png("/nonexistent-dir/x.png", Image(2, 2)), IoError);
   EXPECT_THROW(write_png(testing::output_path("empty.png"), Image()), InvalidInputError);
+}
+
+TEST(RenderImage, ReadImageReadsBackWhatWritePngWrote) {
+  Image image(5, 3, Eigen::Vector3d(0.2, 0.4, 0.6));
+  image.set(4, 2, Eigen::Vector3d(1, 0, 0.5));
+  const std::string path = testing::output_path("read_back.png");
+  write_png(path, image);
+  const Image back = read_image(path);
+  EXPECT_EQ(back.width, 5);
+  EXPECT_EQ(back.height, 3);
+  EXPECT_EQ(back.rgb, image.rgb) << "PNG is lossless: every byte comes back";
+}
+
+TEST(RenderImage, ReadImageNamesTheFile) {
+  const std::string missing = testing::output_path("no_such_image.png");
+  try {
+    read_image(missing);
+    FAIL() << "a missing file must throw";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+  }
+  const std::string text = testing::output_path("not_an_image.png");
+  std::ofstream(text) << "not a PNG\n";
+  try {
+    read_image(text);
+    FAIL() << "a text file must throw";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot read the image"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
