@@ -72,7 +72,7 @@ Map map_arrays(const py::handle& VA, const py::handle& FA, const py::handle& VB,
                const py::handle& landmarks, const py::object& p, const std::string& h, bool normalize, double tolerance,
                int max_iterations, const std::string& solver, const std::string& tree, int samples,
                std::optional<int> threads, bool fix_orientation, const py::object& progress, const std::string& name_a,
-               const std::string& name_b, bool accept_unverified, int start_relaxation) {
+               const std::string& name_b, bool accept_unverified, int start_relaxation, bool overlay) {
   MapKeywords k;
   k.arguments.choices = {norm_name(p), h, solver, tree};
   k.arguments.normalize = normalize;
@@ -82,6 +82,7 @@ Map map_arrays(const py::handle& VA, const py::handle& FA, const py::handle& VB,
   k.arguments.threads = threads;
   k.arguments.fix_orientation = fix_orientation;
   k.arguments.start_relaxation = start_relaxation;
+  k.arguments.overlay = overlay;
   k.progress = progress;
   k.name_a = name_a;
   k.name_b = name_b;
@@ -108,6 +109,8 @@ Options (the CLI's, README "Command line"):
   tree: cut tree, "mst" (paper) or "path" (through all landmarks). Default "mst".
   start_relaxation: Newton steps at most of the start's joint relaxation, common boundary free, 0 to 10000 (0:
     the paper's start on a circle, which takes more outer iterations). Default 100.
+  overlay: compute the overlay (Map.overlay, overlay.obj) and check it in the verification (the CLI's
+    --no-overlay is overlay=False). Default True.
   samples: n, the n^2 samples per face at which the distortion of f and g is measured, 1 to 10. Default 2.
   threads: threads of the per-face work, 1 to 4 per hardware thread; None: the calling thread's OpenMP
     setting. Set for this call on its own thread only.
@@ -171,6 +174,14 @@ void bind_map(py::module_& m) {
     "paths": list of k - 1 int32 arrays, per tree edge the refined vertices from child to parent landmark;
   "tree" (k - 1, 2) int32: the tree edges {parent, child} as landmark indices;
   "boundary_map" (#nu, 2) int32: the boundary correspondence, cut vertices {of A, of B} (boundary_map.txt).)")
+      .def_property_readonly("overlay", &Map::overlay, R"(The overlay (overlay.obj): the common refinement of A and B
+under the map, which is affine on each of its triangles. A dict with
+  "V_A", "V_B" (#Vo, 3) float64: each overlay vertex's position on A and on B;
+  "F" (#Fo, 3) int32: triangles, counter-clockwise on both;
+  "face_A", "face_B" (#Fo,) int32: the input face of A and of B holding each triangle;
+  "faces_A", "barycentric_A" (#Vo,), (#Vo, 3): each vertex as a point of A (overlay_points.txt), likewise "faces_B",
+  "barycentric_B" on B.
+Empty arrays if the map was made with overlay=False.)")
       .def_property_readonly("report", &Map::report,
                              "report.json as a dict (sizes, options, timings, energies, "
                              "distortion, verification).")
@@ -229,5 +240,6 @@ Raises InvalidInputError only for an array of the wrong shape or dtype.)");
         "normalize"_a = true, "tolerance"_a = 1e-3, "max_iterations"_a = 10, "solver"_a = "auto", "tree"_a = "mst",
         "samples"_a = 2, "threads"_a = py::none(), "fix_orientation"_a = false, "progress"_a = py::none(),
         "name_a"_a = "mesh A", "name_b"_a = "mesh B", "accept_unverified"_a = false,
-        "start_relaxation"_a = liftmap::JointStartRelaxationOptions{}.newton.max_iterations, kMapDoc);
+        "start_relaxation"_a = liftmap::JointStartRelaxationOptions{}.newton.max_iterations, "overlay"_a = true,
+        kMapDoc);
 }

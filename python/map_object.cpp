@@ -124,6 +124,24 @@ py::dict Map::cut() const {
   return d;
 }
 
+py::dict Map::overlay() const {
+  const MapState& s = *state_;
+  const Overlay& o = s.result.overlay;
+  py::dict d;
+  d["V_A"] = to_numpy(o.VA);
+  d["V_B"] = to_numpy(o.VB);
+  d["F"] = to_numpy(o.F);
+  d["face_A"] = to_numpy(std::vector<int>(o.face_a.begin(), o.face_a.end()));
+  d["face_B"] = to_numpy(std::vector<int>(o.face_b.begin(), o.face_b.end()));
+  const auto on_a = images_in_given_order(o.on_a, s.inputs.reversed_a);
+  const auto on_b = images_in_given_order(o.on_b, s.inputs.reversed_b);
+  d["faces_A"] = faces_of(on_a);
+  d["barycentric_A"] = barycentric_of(on_a);
+  d["faces_B"] = faces_of(on_b);
+  d["barycentric_B"] = barycentric_of(on_b);
+  return d;
+}
+
 py::object Map::report() const { return py::module_::import("json").attr("loads")(state_->report.dump()); }
 
 void Map::save(const std::string& dir) const {

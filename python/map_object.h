@@ -55,6 +55,8 @@ class Map {
   [[nodiscard]] pybind11::array_t<double> flattening(Side side) const;
   /// The cut as arrays (see the docstring of Map.cut).
   [[nodiscard]] pybind11::dict cut() const;
+  /// The overlay as arrays (see the docstring of Map.overlay).
+  [[nodiscard]] pybind11::dict overlay() const;
   /// report.json as a dict.
   [[nodiscard]] pybind11::object report() const;
   [[nodiscard]] bool verified() const { return state_->result.verification.passed; }

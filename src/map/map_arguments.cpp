@@ -116,6 +116,9 @@ const std::vector<MapArgumentSpec>& map_argument_specs() {
       {"start_relaxation", "--start-relaxation",
        "Newton steps at most of the start's joint relaxation, common boundary free (0: off)", "INT", false, false},
       {"samples", "--samples", "Distortion of f, g: n^2 samples per face", "INT", false, false},
+      {"overlay", "--no-overlay",
+       "Do not compute the overlay (overlay.obj and its tables): for large meshes, a faster map and a smaller folder",
+       "", true, false},
   };
   return specs;
 }
@@ -127,6 +130,7 @@ std::string set_map_argument_text(MapArguments& args, const std::string& name, c
   if (name == "tree") return choice_argument(args.choices.tree, value, kTrees);
   if (name == "normalize") return boolean_argument(args.normalize, value);
   if (name == "fix_orientation") return boolean_argument(args.fix_orientation, value);
+  if (name == "overlay") return boolean_argument(args.overlay, value);
   if (name == "max_iterations") {
     return integer_argument(args.max_iterations, value, 0, MapOptionLimits::kMaxOuterIterations);
   }
@@ -172,6 +176,7 @@ MapOptions map_options(const MapArguments& args) {
   o.flatten.max_iterations = args.max_iterations;
   o.flatten.joint_start.newton.max_iterations = args.start_relaxation;
   o.distortion_samples_per_edge = args.samples;
+  o.overlay = args.overlay;
   o.threads = args.threads.value_or(0);
   return o;
 }

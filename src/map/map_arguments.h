@@ -22,6 +22,7 @@ struct MapArguments {
   int samples = 2;               ///< n, the n^2 distortion samples per face, 1 to MapOptionLimits::kMaxSamplesPerEdge
   std::optional<int> threads;    ///< 1 to MapOptionLimits::max_threads(); unset: the calling thread's OpenMP setting
   bool fix_orientation = false;  ///< reverse an inside-out mesh with a warning instead of rejecting it
+  bool overlay = true;           ///< compute and write the overlay (--no-overlay sets false)
 };
 
 /// One option of MapArguments as the front ends name it.
