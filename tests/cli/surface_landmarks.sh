@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Landmarks on surface points (issue 32): a landmark file with face points, a point on an edge and 3D points (one
+# far from the surface: a warning) maps exactly onto the partners (report.json's landmark error at 1e-12, the
+# tokens in report.json); malformed tokens exit 4 naming the file and line.
+set -u
+liftmap="$1"
+meshes="$2"
+examples="$3"
+source "$(dirname "$0")/lib.sh"
+a="$meshes/larger_sphere.off"
+b="$meshes/ellipsoid.off"
+
+# The example's axis extremes moved off the vertices: pair 1 stays on vertices; the others become a face point of
+# A (one on an edge) and a 3D point near B (one 20% out along the face's centroid: the warning).
+/usr/bin/python3 - "$a" "$b" "$examples/sphere-ellipsoid/landmarks.txt" >"$tmp/surface.txt" <<'PY'
+import sys
+def read_off(path):
+    words = open(path).read().split()
+    nv, nf = int(words[1]), int(words[2])
+    v = [tuple(map(float, words[4 + 3 * i:7 + 3 * i])) for i in range(nv)]
+    at = 4 + 3 * nv
+    f = [tuple(int(x) for x in words[at + 4 * i + 1:at + 4 * i + 4]) for i in range(nf)]
+    return v, f
+va, fa = read_off(sys.argv[1])
+vb, fb = read_off(sys.argv[2])
+pairs = [tuple(map(int, l.split("#")[0].split())) for l in open(sys.argv[3]) if l.split("#")[0].strip()]
+face_of = lambda f, v: next(i for i, t in enumerate(f) if v in t)
+for i, (pa, pb) in enumerate(pairs):
+    if i == 0:
+        print(pa, pb)
+        continue
+    ta = face_of(fa, pa)
+    tb = fb[face_of(fb, pb)]
+    c = [sum(vb[k][d] for k in tb) / 3 for d in range(3)]
+    scale = 1.2 if i == 5 else 1.0
+    token_a = f"f{ta}:0.6,0,0.4" if i == 2 else f"f{ta}:0.5,0.3,0.2"
+    print(token_a, ",".join(repr(scale * x) for x in c), f"  # pair {i + 1}")
+PY
+cat "$tmp/surface.txt"
+expect "map with surface landmarks" 0 "warning: .*surface.txt:6: the point .* from mesh B" -- \
+  map "$a" "$b" -l "$tmp/surface.txt" -o "$tmp/m" --quiet
+report="$tmp/m/report.json"
+require "report.json written" test -e "$report"
+require "landmark error at 1e-12, tokens in report.json" /usr/bin/python3 -c "
+import json, sys
+r = json.load(open('$report'))
+v = r['verification']
+print('landmark error', v['landmark_error'], 'passed', v['passed'])
+lm = r['landmarks']
+assert v['passed'] and v['landmark_error'] <= 1e-12, v
+assert lm[0] == [286, 117] and all(isinstance(t, str) and t.startswith('f') for p in lm[1:] for t in p), lm
+"
+require "landmarks.txt round trip through check" "$liftmap" check "$a" "$b" -l "$tmp/surface.txt"
+
+# Malformed tokens: exit 4, the file and line named, by `map` and by `check`.
+bad() {  # NAME LINE PATTERN
+  { head -2 "$tmp/surface.txt"; echo "$2"; } >"$tmp/$1.txt"
+  expect "$1: map" 4 "^liftmap: $tmp/$1.txt:3: $3" -- map "$a" "$b" -l "$tmp/$1.txt" -o "$tmp/out_$1" --quiet
+  require "$1: map wrote no report" test ! -e "$tmp/out_$1/report.json"
+  expect "$1: check" 4 "$tmp/$1.txt:3: $3" -- check "$a" "$b" -l "$tmp/$1.txt"
+}
+bad no_colon "f3 1" "'f3' is not a face point"
+bad face_range "1 f99999:1,0,0" "face 99999 is out of range for mesh B"
+bad negative "f3:-0.5,1,0.5 1" "barycentric coordinate -0.5 is negative"
+bad sum "f3:0.5,0.5,0.5 1" "barycentric coordinates sum to 1.5, not 1"
+bad nan_point "1 0,nan,1" "coordinate nan of '0,nan,1' is not finite"
+bad two_coordinates "1 0.5,0.5" "'0.5,0.5' is not a 3D point 'x,y,z'"
+bad same_point "$(head -2 "$tmp/surface.txt" | tail -1 | cut -d' ' -f1) 5" "the landmark f[0-9]+:.* of mesh A is at the same point as the one of line 2"
+finish
