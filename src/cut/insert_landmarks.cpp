@@ -31,7 +31,9 @@ std::vector<int> insert_landmarks(RefinedMesh& refined, const Mesh& input, const
   if (single.empty()) return ids;
   const RemeshStats stats = remesh_along_paths(refined, input, single);
   if (stats.kept_as_traced) {
-    throw InvalidInputError("cut: two landmarks are at one point of a face (or too close to tell apart)");
+    throw InvalidInputError(
+        "cut: a landmark inside a face or on an edge is too close to another landmark or to a mesh vertex to be a "
+        "vertex of its own");
   }
   for (size_t j = 0; j < single.size(); ++j) ids[of_single[j]] = single[j][0];
   return ids;

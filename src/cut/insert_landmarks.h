@@ -19,7 +19,8 @@ namespace liftmap {
 /// \param landmarks points of `input`; a face point with a zero barycentric coordinate is located on its edge or
 ///        vertex first (canonical_point)
 /// \return the refined vertex of each landmark
-/// \throw InvalidInputError if two landmarks are at one point (they would be one vertex).
+/// \throw InvalidInputError if a new vertex would be at the point of another landmark or of an input vertex (too
+///        close to tell apart in the plane of its face).
 std::vector<int> insert_landmarks(RefinedMesh& refined, const Mesh& input, const std::vector<SurfacePoint>& landmarks);
 
 }  // namespace liftmap

@@ -342,9 +342,14 @@ Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, con
 
 std::string landmark_token(const SurfacePoint& p) {
   if (p.kind == SurfacePoint::Kind::kVertex) return std::to_string(p.vertex.idx);
-  char s[128];
-  std::snprintf(s, sizeof s, "f%d:%.17g,%.17g,%.17g", p.face.idx, p.bary[0], p.bary[1], p.bary[2]);
-  return s;
+  std::string token = "f" + std::to_string(p.face.idx) + ":";
+  for (size_t k = 0; k < 3; ++k) {
+    char s[32];
+    const auto [end, ec] = std::to_chars(s, s + sizeof s, p.bary[k]);  // the shortest text that reads back exactly
+    token.append(s, end);
+    if (k < 2) token += ',';
+  }
+  return token;
 }
 
 void write_landmarks(const std::string& path, const Landmarks& landmarks) {

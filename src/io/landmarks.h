@@ -62,7 +62,7 @@ Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, con
                          int n_vertices_b);
 
 /// The token of a landmark in the format above: `123` for a vertex point, `f<face>:<b0>,<b1>,<b2>` for a face point
-/// (17 significant digits: reading it back gives the same point).
+/// (each coordinate the shortest text that reads back as the same double).
 /// \pre p is a vertex or face point
 std::string landmark_token(const SurfacePoint& p);
 

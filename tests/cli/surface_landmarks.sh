@@ -52,6 +52,31 @@ assert lm[0] == [286, 117] and all(isinstance(t, str) and t.startswith('f') for 
 "
 require "landmarks.txt round trip through check" "$liftmap" check "$a" "$b" -l "$tmp/surface.txt"
 
+# An inside-out A mapped with --fix-orientation: its face points are read in the file's corner order. Each is a
+# vertex of the cut graph at exactly the point its token names in the file, and report.json shows the tokens as given.
+"$(dirname "$0")/make_variant.py" invert "$a" "$tmp/inside_out.off"
+expect "fix-orientation with face points" 0 "inside_out.off is inside-out .*its faces are reversed" -- \
+  map "$tmp/inside_out.off" "$b" -l "$tmp/surface.txt" -o "$tmp/fixed" --quiet --fix-orientation
+require "fix-orientation: the landmarks are the file's points" /usr/bin/python3 -c "
+import json
+words = open('$tmp/inside_out.off').read().split()
+nv, nf = int(words[1]), int(words[2])
+V = [[float(x) for x in words[4 + 3 * i:7 + 3 * i]] for i in range(nv)]
+F = [[int(x) for x in words[5 + 3 * nv + 4 * i:8 + 3 * nv + 4 * i]] for i in range(nf)]
+cut = [[float(x) for x in l.split()[1:]] for l in open('$tmp/fixed/cut_graph_A.obj') if l.startswith('v ')]
+diag = sum((max(v[d] for v in V) - min(v[d] for v in V)) ** 2 for d in range(3)) ** 0.5
+r = json.load(open('$tmp/fixed/report.json'))
+given = [l.split()[0] for l in open('$tmp/surface.txt') if l.split()]
+assert r['verification']['passed'] and r['verification']['landmark_error'] <= 1e-12, r['verification']
+assert [str(p[0]) for p in r['landmarks']] == given, (r['landmarks'], given)
+for t in given[1:]:
+    f, b = t[1:].split(':')
+    b = [float(x) for x in b.split(',')]
+    p = [sum(b[k] * V[F[int(f)][k]][d] for k in range(3)) for d in range(3)]
+    gap = min(sum((c[d] - p[d]) ** 2 for d in range(3)) ** 0.5 for c in cut)
+    assert gap <= 1e-12 * diag, (t, gap)
+"
+
 # Malformed tokens: exit 4, the file and line named, by `map` and by `check`.
 bad() {  # NAME LINE PATTERN
   { head -2 "$tmp/surface.txt"; echo "$2"; } >"$tmp/$1.txt"

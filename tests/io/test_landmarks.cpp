@@ -50,7 +50,7 @@ TEST(Landmarks, WriteReadRoundTrip) {
         EXPECT_EQ(p.vertex, q.vertex);
       } else {
         EXPECT_EQ(p.face, q.face);
-        EXPECT_EQ(p.bary, q.bary);  // 17 significant digits: exactly
+        EXPECT_EQ(p.bary, q.bary);  // the shortest round-trip text: exactly
       }
     }
   }
@@ -112,9 +112,7 @@ TEST(Landmarks, RejectsMalformedSurfacePointsWithTheLine) {
       {"-3 1", "lm.txt:2: negative vertex index '-3' for mesh A"},
       // Two landmarks at one point of one side, written differently: an error naming both lines.
       {"f0:1,0,0 1", "lm.txt:2: vertex 0 of mesh A is already a landmark (line 1)"},
-      {"1 f0:0.2,0.3,0.5",
-       "lm.txt:2: the landmark f0:0.20000000000000001,0.29999999999999999,0.5 of mesh B is at the "
-       "same point as the one of line 1"},
+      {"1 f0:0.2,0.3,0.5", "lm.txt:2: the landmark f0:0.2,0.3,0.5 of mesh B is at the same point as the one of line 1"},
       {"1 0.2,0.3,0.5", "lm.txt:2: the landmark f0:"},
       {"1 f4:0,0.5,0.5", "lm.txt:2: the landmark f4:0,0.5,0.5 of mesh B is at the same point as the one of line 1"},
   };
