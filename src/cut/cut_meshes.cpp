@@ -100,6 +100,7 @@ void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<S
 
 std::vector<VertexId> as_vertices(const std::vector<int>& ids) {
   std::vector<VertexId> v;
+  v.reserve(ids.size());
   for (const int id : ids) v.emplace_back(id);
   return v;
 }
