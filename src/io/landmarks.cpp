@@ -22,6 +22,8 @@ namespace {
 constexpr double kBarycentricTolerance = 1e-9;
 /// A 3D point farther than this fraction of the bounding box diagonal from the surface gets a warning.
 constexpr double kFarFromSurface = 0.01;
+/// Barycentric coordinates below this are 0: the point is on a side (or at a corner) of its face.
+constexpr double kSnapToSide = 1e-12;
 /// Two landmarks of one side closer than this fraction of the bounding box diagonal are at one point.
 constexpr double kSamePoint = 1e-12;
 
@@ -80,8 +82,14 @@ struct Token {
   SurfacePoint point;
 };
 
-/// The face point of barycentric coordinates b in `face`, a vertex point if only one of them is positive.
+/// The face point of barycentric coordinates b in `face`, a vertex point if only one of them is positive. Coordinates
+/// below kSnapToSide count as 0: a point of a side located from its 3D coordinates is off it by rounding, and a vertex
+/// that close to a side would leave a sliver of that height in the refined mesh (a distortion of 1e14 in f).
 Token face_token(const LandmarkMesh& mesh, int face, std::array<double, 3> b) {
+  b = clamp_barycentric(b);
+  for (double& x : b) {
+    if (x < kSnapToSide) x = 0;
+  }
   b = clamp_barycentric(b);
   Token t;
   for (int k = 0; k < 3; ++k) {

@@ -5,7 +5,8 @@
 /// are ignored. A token is one of
 /// - `123`: a vertex, by its 0-based index;
 /// - `f812:0.2,0.3,0.5`: a point of face 812 (0-based row of F) with barycentric coordinates of its three corners
-///   in the file's order, each in [0, 1] and summing to 1 (both within 1e-9; they are clamped and normalised);
+///   in the file's order, each in [0, 1] and summing to 1 (both within 1e-9; they are clamped and normalised, and
+///   coordinates below 1e-12 count as 0: the point is on a side or at a corner);
 /// - `0.1,-2.5,3`: a point of R^3, located at the nearest point of the surface (a warning says so if that is
 ///   farther than 1% of the bounding box diagonal).
 /// No spaces inside a token.

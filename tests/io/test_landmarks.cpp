@@ -60,12 +60,16 @@ TEST(Landmarks, WriteReadRoundTrip) {
 TEST(Landmarks, ReadsFacePointsAnd3DPoints) {
   const TriangleMesh oct = read_mesh(testing::test_data("good/octahedron.off"));
   std::istringstream in(
-      "4 f0:0.6,0.2,0.2\n"              // line 1: vertex, face point
-      "f1:0.25,0.25,0.5 0.2,0.3,0.5\n"  // line 2: face point, 3D point on face 0
-      "f2:0,1,0 f3:2e-10,0.5,0.5\n"     // line 3: a corner (vertex 3); a coordinate within the tolerance of 0
-      "f4:0.5,0,0.5 2,2,2\n");          // line 4: on an edge; a 3D point far from the surface
+      "4 f0:0.6,0.2,0.2\n"                     // line 1: vertex, face point
+      "f1:0.25,0.25,0.5 0.2,0.3,0.5\n"         // line 2: face point, 3D point on face 0
+      "f2:0,1,0 f3:2e-10,0.5,0.5\n"            // line 3: a corner (vertex 3); a coordinate within the tolerance of 0
+      "f4:0.5,0,0.5 2,2,2\n"                   // line 4: on an edge; a 3D point far from the surface
+      "f5:1e-13,0.4,0.6 f6:0.3,0.7,1e-14\n");  // line 5: coordinates below 1e-12 are 0
   const Landmarks lm = read_landmarks(in, "lm.txt", oct.V, oct.F, oct.V, oct.F);
-  ASSERT_EQ(lm.a.size(), 4U);
+  ASSERT_EQ(lm.a.size(), 5U);
+  EXPECT_EQ(lm.a[4].bary[0], 0.0);
+  EXPECT_EQ(lm.b[4].bary[2], 0.0);
+  EXPECT_EQ(lm.b[4].bary[0] + lm.b[4].bary[1], 1.0);
   EXPECT_EQ(lm.a[0].kind, SurfacePoint::Kind::kVertex);
   EXPECT_EQ(lm.a[0].vertex.idx, 4);
   ASSERT_EQ(lm.b[0].kind, SurfacePoint::Kind::kFace);
