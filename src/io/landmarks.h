@@ -5,8 +5,8 @@
 /// are ignored. A token is one of
 /// - `123`: a vertex, by its 0-based index;
 /// - `f812:0.2,0.3,0.5`: a point of face 812 (0-based row of F) with barycentric coordinates of its three corners
-///   in the file's order, each in [0, 1] and summing to 1 (both within 1e-9; they are clamped and normalised, and
-///   coordinates below 1e-12 count as 0: the point is on a side or at a corner);
+///   in the file's order, each in [0, 1] and summing to 1 (both within 1e-9; they are clamped and normalised; a
+///   coordinate below 1e-3 is set to 0, which moves a point that near a side of its face onto it, with a warning);
 /// - `0.1,-2.5,3`: a point of R^3, located at the nearest point of the surface (a warning says so if that is
 ///   farther than 1% of the bounding box diagonal).
 /// No spaces inside a token.
@@ -29,7 +29,8 @@ struct Landmarks {
   std::vector<SurfacePoint> a;
   std::vector<SurfacePoint> b;
   std::vector<int> line;              ///< line of the file each pair came from (for messages)
-  std::vector<std::string> warnings;  ///< for the user: 3D points far from the surface, naming file and line
+  std::vector<std::string> warnings;  ///< for the user, naming file and line: 3D points far from the surface, points
+                                      ///< moved onto a side of their face
 };
 
 /// Reads and validates a landmark file of vertex indices only against meshes with `n_vertices_a` and

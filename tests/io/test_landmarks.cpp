@@ -60,13 +60,15 @@ TEST(Landmarks, WriteReadRoundTrip) {
 TEST(Landmarks, ReadsFacePointsAnd3DPoints) {
   const TriangleMesh oct = read_mesh(testing::test_data("good/octahedron.off"));
   std::istringstream in(
-      "4 f0:0.6,0.2,0.2\n"                     // line 1: vertex, face point
-      "f1:0.25,0.25,0.5 0.2,0.3,0.5\n"         // line 2: face point, 3D point on face 0
-      "f2:0,1,0 f3:2e-10,0.5,0.5\n"            // line 3: a corner (vertex 3); a coordinate within the tolerance of 0
-      "f4:0.5,0,0.5 2,2,2\n"                   // line 4: on an edge; a 3D point far from the surface
-      "f5:1e-13,0.4,0.6 f6:0.3,0.7,1e-14\n");  // line 5: coordinates below 1e-12 are 0
+      "4 f0:0.6,0.2,0.2\n"                       // line 1: vertex, face point
+      "f1:0.25,0.25,0.5 0.2,0.3,0.5\n"           // line 2: face point, 3D point on face 0
+      "f2:0,1,0 f3:2e-10,0.5,0.5\n"              // line 3: a corner (vertex 3); 2e-10 of the height from a side
+      "f4:0.5,0,0.5 2,2,2\n"                     // line 4: on an edge; a 3D point far from the surface
+      "f5:1e-13,0.4,0.6 f6:0.3,0.7,1e-14\n"      // line 5: rounding off a side: on it, without a warning
+      "f7:0.0005,0.4995,0.5 f2:0.2,0.2,0.6\n");  // line 6: 5e-4 of the height from a side: moved, with a warning
   const Landmarks lm = read_landmarks(in, "lm.txt", oct.V, oct.F, oct.V, oct.F);
-  ASSERT_EQ(lm.a.size(), 5U);
+  ASSERT_EQ(lm.a.size(), 6U);
+  EXPECT_EQ(lm.a[5].bary, (std::array<double, 3>{0, 0.4995 / 0.9995, 0.5 / 0.9995}));
   EXPECT_EQ(lm.a[4].bary[0], 0.0);
   EXPECT_EQ(lm.b[4].bary[2], 0.0);
   EXPECT_EQ(lm.b[4].bary[0] + lm.b[4].bary[1], 1.0);
@@ -89,8 +91,14 @@ TEST(Landmarks, ReadsFacePointsAnd3DPoints) {
   // (2, 2, 2) is nearest to the centre of face 0, far from the surface: a warning naming the line, not an error.
   EXPECT_EQ(lm.b[3].face.idx, 0);
   EXPECT_NEAR(lm.b[3].bary[0], 1.0 / 3, 1e-15);
-  ASSERT_EQ(lm.warnings.size(), 1U);
-  EXPECT_NE(lm.warnings[0].find("lm.txt:4: the point 2,2,2"), std::string::npos) << lm.warnings[0];
+  ASSERT_EQ(lm.warnings.size(), 3U);
+  EXPECT_NE(lm.warnings[0].find("lm.txt:3: the landmark on mesh B is within 0.001 of its face's height from a side of "
+                                "face 3: moved onto the side, by 2"),
+            std::string::npos)
+      << lm.warnings[0];
+  EXPECT_NE(lm.warnings[1].find("lm.txt:4: the point 2,2,2"), std::string::npos) << lm.warnings[1];
+  EXPECT_NE(lm.warnings[2].find("lm.txt:6: the landmark on mesh A is within 0.001"), std::string::npos)
+      << lm.warnings[2];
   EXPECT_EQ(lm.line[3], 4);
 }
 
