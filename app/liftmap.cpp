@@ -68,6 +68,8 @@ void print_mesh_report(const std::string& path, const liftmap::MeshReport& r) {
   std::cout << "mappable:             no\n";
 }
 
+void print_warning(const std::string& message) { std::cerr << "liftmap: warning: " << message << '\n'; }
+
 /// `liftmap check`: the report of every mesh, then the landmark file's verdict; with --json one document
 /// {"meshes": [...], "landmarks": {...} (with -l), "mappable": ...}.
 int run_check(const std::vector<std::string>& paths, const std::string& landmarks_path, bool as_json) {
@@ -93,8 +95,12 @@ int run_check(const std::vector<std::string>& paths, const std::string& landmark
   if (!landmarks_path.empty()) {
     nlohmann::json lm = {{"file", landmarks_path}};
     try {
-      const liftmap::Landmarks landmarks = liftmap::read_landmarks(landmarks_path, static_cast<int>(meshes[0].V.rows()),
-                                                                   static_cast<int>(meshes[1].V.rows()));
+      const liftmap::Landmarks landmarks =
+          liftmap::read_landmarks(landmarks_path, meshes[0].V, meshes[0].F, meshes[1].V, meshes[1].F);
+      lm["warnings"] = landmarks.warnings;
+      if (!as_json) {
+        for (const std::string& w : landmarks.warnings) print_warning(w);
+      }
       lm["pairs"] = landmarks.a.size();
       lm["valid"] = true;
       lm["error"] = nullptr;
@@ -182,8 +188,6 @@ void add_pair_options(CLI::App* cmd, PairJob& job) {
   cmd->add_option("-o,--out", job.out_dir, "Output folder (created if missing)")->capture_default_str();
   cmd->add_flag("-q,--quiet", job.quiet, "No progress on stderr");
 }
-
-void print_warning(const std::string& message) { std::cerr << "liftmap: warning: " << message << '\n'; }
 
 /// Progress lines of the pipeline on stderr, timed from now; empty if quiet.
 std::function<void(const std::string&, const std::string&)> progress_printer(bool quiet) {

@@ -53,7 +53,8 @@ py::tuple read_mesh_arrays(const std::string& path) {
 py::array_t<int> read_landmark_pairs(const std::string& path, std::optional<int> n_a, std::optional<int> n_b) {
   const Landmarks lm = read_landmarks(path, n_a.value_or(INT_MAX), n_b.value_or(INT_MAX));
   Eigen::MatrixXi L(static_cast<Eigen::Index>(lm.a.size()), 2);
-  for (size_t i = 0; i < lm.a.size(); ++i) L.row(static_cast<Eigen::Index>(i)) << lm.a[i].idx, lm.b[i].idx;
+  for (size_t i = 0; i < lm.a.size(); ++i)
+    L.row(static_cast<Eigen::Index>(i)) << lm.a[i].vertex.idx, lm.b[i].vertex.idx;  // vertex indices only
   return to_numpy(L);
 }
 

@@ -259,8 +259,8 @@ int run(int argc, char** argv) {
       liftmap::read_landmarks(argv[3], static_cast<int>(A.V.rows()), static_cast<int>(B.V.rows()));
   const int n = argc > 4 ? std::stoi(argv[4]) : 2;
   if (L.a.size() < 3) throw std::runtime_error("need at least 3 landmark pairs (the first 3 are the cones)");
-  const std::array<int, 3> cones_a{L.a[0].idx, L.a[1].idx, L.a[2].idx};
-  const std::array<int, 3> cones_b{L.b[0].idx, L.b[1].idx, L.b[2].idx};
+  const std::array<int, 3> cones_a{L.a[0].vertex.idx, L.a[1].vertex.idx, L.a[2].vertex.idx};
+  const std::array<int, 3> cones_b{L.b[0].vertex.idx, L.b[1].vertex.idx, L.b[2].vertex.idx};
   const Embedding ea = embed(A, cones_a);
   const Embedding eb = embed(B, cones_b);
   const double embed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -122,4 +122,25 @@ std::array<double, 3> reexpress_in_face(const SurfacePoint& p, const Eigen::Matr
   return clamp_barycentric(w);
 }
 
+SurfacePoint canonical_point(const Mesh& mesh, FaceId f, std::array<double, 3> b) {
+  b = clamp_barycentric(b);
+  const int nonzero = (b[0] > 0) + (b[1] > 0) + (b[2] > 0);
+  const auto fh = mesh.face_halfedges(f);
+  if (nonzero == 1) {
+    for (int k = 0; k < 3; ++k) {
+      if (b[k] > 0) return SurfacePoint::at_vertex(mesh.tail(fh[k]));
+    }
+  }
+  if (nonzero == 2) {
+    for (int k = 0; k < 3; ++k) {
+      if (b[(k + 2) % 3] > 0) continue;
+      // Zero weight at corner k+2: the point is on halfedge k (corner k to corner k+1).
+      const EdgeId e = Mesh::edge(fh[k]);
+      const bool same = fh[k] == Mesh::halfedge(e);
+      return SurfacePoint::on_edge(e, same ? b[(k + 1) % 3] : b[k]);
+    }
+  }
+  return SurfacePoint::in_face(f, b);
+}
+
 }  // namespace liftmap

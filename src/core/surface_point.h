@@ -37,6 +37,12 @@ SurfacePoint as_face_point(const Mesh& mesh, const SurfacePoint& p);
 /// \pre `f` contains `p` (a face around the vertex, a face of the edge, or the face itself).
 std::array<double, 3> barycentric_in_face(const Mesh& mesh, const SurfacePoint& p, FaceId f);
 
+/// The most specific SurfacePoint for barycentric coordinates `b` of face `f` (in the order of `face_vertices(f)`):
+/// a vertex point if one coordinate is positive, an edge point if two are, else a face point. Coordinates are
+/// clamped and normalised first (clamp_barycentric); only exact zeros count, so interpolation that keeps zeros
+/// exact is recognised exactly. \pre some entry of b is positive
+SurfacePoint canonical_point(const Mesh& mesh, FaceId f, std::array<double, 3> b);
+
 /// w with its negative entries (rounding noise, of order -1e-16) set to 0, then divided by its sum: barycentric
 /// coordinates of a valid face point. \pre some entry of w is positive
 std::array<double, 3> clamp_barycentric(std::array<double, 3> w);

@@ -12,6 +12,7 @@
 #include "cut/cut_tree.h"
 #include "cut/edge_key.h"
 #include "cut/geodesic_distance.h"
+#include "cut/insert_landmarks.h"
 #include "cut/refined_mesh.h"
 #include "cut/remesh_along_paths.h"
 #include "cut/trace_cut_paths.h"
@@ -20,7 +21,51 @@ namespace liftmap {
 
 namespace {
 
-void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& landmarks, const char* name) {
+/// Why `p` is not a point of `mesh` with at least one face around it, or empty if it is.
+std::string invalid_point(const Mesh& mesh, const SurfacePoint& p) {
+  switch (p.kind) {
+    case SurfacePoint::Kind::kVertex:
+      if (p.vertex.idx < 0 || p.vertex.idx >= mesh.n_vertices() || mesh.is_isolated(p.vertex)) {
+        return "vertex " + std::to_string(p.vertex.idx) + ", which is not a vertex of a face";
+      }
+      return {};
+    case SurfacePoint::Kind::kEdge:
+      if (p.edge.idx < 0 || p.edge.idx >= mesh.n_edges())
+        return "on edge " + std::to_string(p.edge.idx) + ", out of range";
+      if (!(p.t > 0 && p.t < 1)) return "on edge " + std::to_string(p.edge.idx) + " at t = " + std::to_string(p.t);
+      return {};
+    case SurfacePoint::Kind::kFace: {
+      if (p.face.idx < 0 || p.face.idx >= mesh.n_faces())
+        return "in face " + std::to_string(p.face.idx) + ", out of range";
+      double sum = 0;
+      for (const double b : p.bary) {
+        if (!std::isfinite(b) || b < 0)
+          return "in face " + std::to_string(p.face.idx) + " with a coordinate " + std::to_string(b);
+        sum += b;
+      }
+      if (std::abs(sum - 1) > 1e-9)
+        return "in face " + std::to_string(p.face.idx) + " with coordinates summing to " + std::to_string(sum);
+      return {};
+    }
+  }
+  return {};
+}
+
+/// A vertex of the element of `p` (where a search from it can start).
+VertexId some_vertex(const Mesh& mesh, const SurfacePoint& p) {
+  switch (p.kind) {
+    case SurfacePoint::Kind::kVertex:
+      return p.vertex;
+    case SurfacePoint::Kind::kEdge:
+      return mesh.tail(Mesh::halfedge(p.edge));
+    case SurfacePoint::Kind::kFace:
+      return mesh.face_vertices(p.face)[0];
+  }
+  return p.vertex;
+}
+
+void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<SurfacePoint>& landmarks,
+                 const char* name) {
   if (!mesh.boundary_loops().empty() || mesh.euler_characteristic() != 2) {
     throw InvalidInputError(std::string("cut: mesh ") + name +
                             " is not a closed genus-0 surface (Euler characteristic " +
@@ -29,11 +74,14 @@ void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<V
   }
   std::map<int, size_t> seen;  // vertex -> first landmark on it
   for (size_t i = 0; i < landmarks.size(); ++i) {
-    const int v = landmarks[i].idx;
-    if (v < 0 || v >= mesh.n_vertices() || mesh.is_isolated(landmarks[i])) {
-      throw InvalidInputError(std::string("cut: landmark ") + std::to_string(i) + " of mesh " + name + " is vertex " +
-                              std::to_string(v) + ", which is not a vertex of a face");
+    if (const std::string why = invalid_point(mesh, landmarks[i]); !why.empty()) {
+      throw InvalidInputError(std::string("cut: landmark ") + std::to_string(i) + " of mesh " + name + " is " + why);
     }
+    const SurfacePoint p = landmarks[i].kind == SurfacePoint::Kind::kFace
+                               ? canonical_point(mesh, landmarks[i].face, landmarks[i].bary)
+                               : landmarks[i];
+    if (p.kind != SurfacePoint::Kind::kVertex) continue;  // points apart from vertices: insert_landmarks
+    const int v = p.vertex.idx;
     const auto [it, fresh] = seen.emplace(v, i);
     if (!fresh) {
       throw InvalidInputError(std::string("cut: landmarks ") + std::to_string(it->second) + " and " +
@@ -41,12 +89,28 @@ void check_input(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<V
                               " (each landmark needs its own vertex)");
     }
   }
-  const auto dist = edge_graph_distances(mesh, V, landmarks[0]);
+  const auto dist = edge_graph_distances(mesh, V, some_vertex(mesh, landmarks[0]));
   for (size_t v = 0; v < dist.size(); ++v) {
     if (!mesh.is_isolated(VertexId(static_cast<int>(v))) && !std::isfinite(dist[v])) {
       throw InvalidInputError(std::string("cut: mesh ") + name + " is not connected (vertex " + std::to_string(v) +
                               " cannot be reached from landmark 0)");
     }
+  }
+}
+
+std::vector<VertexId> as_vertices(const std::vector<int>& ids) {
+  std::vector<VertexId> v;
+  v.reserve(ids.size());
+  for (const int id : ids) v.emplace_back(id);
+  return v;
+}
+
+/// Each landmark's refined vertex read off the ends of the paths (from child to parent landmark of each edge).
+void renumber_landmarks(const std::vector<std::array<int, 2>>& edges, const std::vector<std::vector<int>>& paths,
+                        std::vector<int>& landmarks) {
+  for (size_t e = 0; e < edges.size(); ++e) {
+    landmarks[static_cast<size_t>(edges[e][1])] = paths[e].front();
+    landmarks[static_cast<size_t>(edges[e][0])] = paths[e].back();
   }
 }
 
@@ -82,9 +146,22 @@ CutSide finish(const RefinedMesh& r, const Mesh& input, const std::vector<int>& 
 
 }  // namespace
 
+std::vector<SurfacePoint> vertex_points(const std::vector<VertexId>& vertices) {
+  std::vector<SurfacePoint> points;
+  points.reserve(vertices.size());
+  for (const VertexId v : vertices) points.push_back(SurfacePoint::at_vertex(v));
+  return points;
+}
+
 CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
                      const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
                      const std::vector<VertexId>& landmarks_b, const CutOptions& options) {
+  return cut_meshes(VA, FA, VB, FB, vertex_points(landmarks_a), vertex_points(landmarks_b), options);
+}
+
+CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<SurfacePoint>& landmarks_a,
+                     const std::vector<SurfacePoint>& landmarks_b, const CutOptions& options) {
   if (landmarks_a.size() != landmarks_b.size()) {
     throw InvalidInputError("cut: " + std::to_string(landmarks_a.size()) + " landmarks on mesh A but " +
                             std::to_string(landmarks_b.size()) + " on mesh B");
@@ -95,15 +172,15 @@ CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   check_input(mesh_a, VA, landmarks_a, "A");
   check_input(mesh_b, VB, landmarks_b, "B");
 
-  const Eigen::MatrixXd W = landmark_distances(mesh_a, VA, landmarks_a) + landmark_distances(mesh_b, VB, landmarks_b);
+  RefinedMesh ra = make_refined_mesh(mesh_a, VA);
+  RefinedMesh rb = make_refined_mesh(mesh_b, VB);
+  std::vector<int> la = insert_landmarks(ra, mesh_a, landmarks_a);
+  std::vector<int> lb = insert_landmarks(rb, mesh_b, landmarks_b);
+  const Eigen::MatrixXd W = landmark_distances(ra.mesh, ra.vertex_matrix(), as_vertices(la)) +
+                            landmark_distances(rb.mesh, rb.vertex_matrix(), as_vertices(lb));
   CutResult result;
   result.tree = options.tree == CutOptions::Tree::kPath ? path_tree(W) : minimum_spanning_tree(W);
 
-  RefinedMesh ra = make_refined_mesh(mesh_a, VA);
-  RefinedMesh rb = make_refined_mesh(mesh_b, VB);
-  std::vector<int> la, lb;
-  for (const VertexId v : landmarks_a) la.push_back(v.idx);
-  for (const VertexId v : landmarks_b) lb.push_back(v.idx);
   TraceOptions trace;
   trace.steiner = options.geodesic_paths;
   trace.shorten = options.geodesic_paths;
@@ -119,6 +196,9 @@ CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
     remesh_along_paths(ra, mesh_a, traced.paths_a);
     remesh_along_paths(rb, mesh_b, traced.paths_b);
   }
+  // Re-triangulation renumbers the vertices after the input's; the landmarks are the paths' ends.
+  renumber_landmarks(traced.edges, traced.paths_a, la);
+  renumber_landmarks(traced.edges, traced.paths_b, lb);
 
   CutDisk disk_a, disk_b;
   result.a = finish(ra, mesh_a, la, std::move(traced.paths_a), disk_a);

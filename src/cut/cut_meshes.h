@@ -50,15 +50,27 @@ struct CutResult {
 
 /// Cuts two closed genus-0 meshes to disks along a common tree through corresponding landmarks.
 /// \param VA, VB #V by 3 positions; FA, FB #F by 3 faces (counter-clockwise)
-/// \param landmarks_a, landmarks_b k >= 2 vertices each; landmark i of A corresponds to landmark i of B
+/// \param landmarks_a, landmarks_b k >= 2 points each (vertex, edge or face points of the input connectivity, a
+///        face point's barycentric coordinates in the order of its row of F); landmark i of A corresponds to
+///        landmark i of B. A point that is not a vertex becomes a vertex of the refined mesh (insert_landmarks)
+///        before the tree is traced; input vertex i is refined vertex i.
 /// \return refined and cut meshes with provenance; every cut mesh is a disk (one boundary loop, Euler
 ///         characteristic 1) and nu is a bijection of the boundary vertices preserving their cyclic order and
 ///         taking landmark copies to copies of the same landmark.
 /// \throw InvalidInputError if a mesh is not closed genus 0 and connected, the landmark counts differ, k < 2, a
-///        landmark index is out of range, or two landmarks share a vertex.
+///        landmark's vertex, edge or face is out of range or has no face, a face point's coordinates are not
+///        finite, non-negative and summing to 1, or two landmarks of one side are at one point.
 /// \throw PipelineError if an internal invariant fails (a bug).
+CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<SurfacePoint>& landmarks_a,
+                     const std::vector<SurfacePoint>& landmarks_b, const CutOptions& options = {});
+
+/// cut_meshes with landmarks on vertices.
 CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
                      const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
                      const std::vector<VertexId>& landmarks_b, const CutOptions& options = {});
+
+/// Vertex landmarks as surface points.
+std::vector<SurfacePoint> vertex_points(const std::vector<VertexId>& vertices);
 
 }  // namespace liftmap

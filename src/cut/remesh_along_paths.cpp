@@ -183,17 +183,20 @@ std::vector<std::array<int, 3>> triangulate_face(const std::array<Eigen::Vector2
 }
 
 /// Drops every path vertex inside an input face whose two path neighbours lie on that face and on no other common
-/// face (as vertices of intermediate refinements leave them): the path then runs straight across each input face,
-/// from where it enters to where it leaves, as a geodesic does. Two paths that did not cross do not cross after it:
-/// their chords of one face end at points that do not interleave along the face's boundary. \return the number of
-/// vertices dropped
+/// face (as vertices of intermediate refinements leave them), unless the path would be left with one edge: the path
+/// then runs straight across each input face, from where it enters to where it leaves, as a geodesic does. Two paths
+/// that did not cross do not cross after it: their chords of one face end at points that do not interleave along the
+/// face's boundary. \return the number of vertices dropped
 int straighten_within_faces(const RefinedMesh& refined, const Mesh& input, std::vector<std::vector<int>>& paths) {
   int dropped = 0;
   for (auto& p : paths) {
     std::vector<int> out;
     for (size_t i = 0; i < p.size(); ++i) {
       const SurfacePoint& x = refined.on_input[static_cast<size_t>(p[i])];
-      if (i > 0 && i + 1 < p.size() && x.kind == SurfacePoint::Kind::kFace) {
+      // A path keeps two edges at least: cutting along a single edge would leave no disk (its two copies would be
+      // the whole boundary); two landmarks inside one input face would otherwise be joined straight.
+      const bool keeps_two_edges = out.size() + (p.size() - i - 1) >= 3;
+      if (i > 0 && i + 1 < p.size() && x.kind == SurfacePoint::Kind::kFace && keeps_two_edges) {
         const auto common = common_faces(input, refined.on_input[static_cast<size_t>(out.back())],
                                          refined.on_input[static_cast<size_t>(p[i + 1])]);
         // Only across the face: neighbours on one common edge would make the chord run along it, possibly over

@@ -21,8 +21,8 @@ struct RemeshStats {
 };
 
 /// If `straighten`, straightens each path across the input faces first (a path vertex inside an input face whose
-/// path neighbours lie on that face is dropped; if rounding makes two straightened paths touch, the paths are kept as
-/// traced). Rebuilds `refined` so that it holds only the input vertices and the
+/// path neighbours lie on that face is dropped, as long as the path keeps two edges; if rounding makes two straightened
+/// paths touch, the paths are kept as traced). Rebuilds `refined` so that it holds only the input vertices and the
 /// vertices of `paths`, and triangulates each input face that holds a path vertex as the constrained Delaunay
 /// triangulation (in the plane of the face) of its three corners, the path vertices on its sides and inside it, with
 /// every path segment that crosses it as a constraint. Vertices keep their positions and their exact provenance

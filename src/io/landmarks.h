@@ -1,36 +1,59 @@
 #pragma once
 /// Landmark files: corresponding points of mesh A and mesh B.
 ///
-/// Format (text): one pair per line, `iA iB`, 0-based vertex indices into mesh A and mesh B. `#` starts a
-/// comment (whole line or trailing); blank lines are ignored. A token that is a plain non-negative integer is a
-/// vertex index. Other token forms are reserved for landmarks on surface points (inside faces or on edges) and
-/// are rejected for now with a message saying so; a future version accepts them without changing the meaning of
-/// existing files.
+/// Format (text): one pair per line, `tokenA tokenB`. `#` starts a comment (whole line or trailing); blank lines
+/// are ignored. A token is one of
+/// - `123`: a vertex, by its 0-based index;
+/// - `f812:0.2,0.3,0.5`: a point of face 812 (0-based row of F) with barycentric coordinates of its three corners
+///   in the file's order, each in [0, 1] and summing to 1 (both within 1e-9; they are clamped and normalised; a
+///   coordinate below 1e-3 is set to 0, which moves a point that near a side of its face onto it, with a warning);
+/// - `0.1,-2.5,3`: a point of R^3, located at the nearest point of the surface (a warning says so if that is
+///   farther than 1% of the bounding box diagonal).
+/// No spaces inside a token.
 
+#include <Eigen/Core>
 #include <array>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/surface_point.h"
 
 namespace liftmap {
 
-/// Corresponding landmarks: `a[i]` on mesh A corresponds to `b[i]` on mesh B.
+/// Corresponding landmarks: `a[i]` on mesh A corresponds to `b[i]` on mesh B. Each is a vertex point, or a face
+/// point with barycentric coordinates in the order of the face's row of F (a point on an edge has one exact zero,
+/// a face point never has two); no edge points, so the landmarks need no connectivity (the cut locates them).
 struct Landmarks {
-  std::vector<VertexId> a;
-  std::vector<VertexId> b;
-  std::vector<int> line;  ///< line of the file each pair came from (for messages)
+  std::vector<SurfacePoint> a;
+  std::vector<SurfacePoint> b;
+  std::vector<int> line;              ///< line of the file each pair came from (for messages)
+  std::vector<std::string> warnings;  ///< for the user, naming file and line: 3D points far from the surface, points
+                                      ///< moved onto a side of their face
 };
 
-/// Reads and validates a landmark file against meshes with `n_vertices_a` and `n_vertices_b` vertices.
+/// Reads and validates a landmark file of vertex indices only against meshes with `n_vertices_a` and
+/// `n_vertices_b` vertices (surface-point tokens need the meshes: the overload below).
 /// \throw IoError if the file cannot be read; InvalidInputError naming the file and line for a malformed line,
-///        an index out of range, a vertex used twice on one side, or fewer than 2 pairs.
+///        an index out of range, a vertex used twice on one side, a surface-point token, or fewer than 2 pairs.
 /// A UTF-8 byte-order mark before the first line is skipped.
 Landmarks read_landmarks(const std::string& path, int n_vertices_a, int n_vertices_b);
 
-/// read_landmarks from a stream; `name` stands for the file in messages.
+/// read_landmarks (vertex indices only) from a stream; `name` stands for the file in messages.
 Landmarks read_landmarks(std::istream& in, const std::string& name, int n_vertices_a, int n_vertices_b);
+
+/// Reads and validates a landmark file with every token form against the two meshes.
+/// \param VA, VB #V by 3 positions; FA, FB #F by 3 faces
+/// \throw IoError if the file cannot be read; InvalidInputError naming the file and line for a malformed token,
+///        a vertex or face out of range, barycentric coordinates that are not finite, outside [0, 1] or do not sum
+///        to 1, two landmarks at one point of one side (naming both lines), or fewer than 2 pairs.
+Landmarks read_landmarks(const std::string& path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                         const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
+
+/// read_landmarks with the meshes, from a stream; `name` stands for the file in messages.
+Landmarks read_landmarks(std::istream& in, const std::string& name, const Eigen::MatrixXd& VA,
+                         const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
 
 /// Landmarks given as index pairs (e.g. a k by 2 array from Python), with the checks of read_landmarks.
 /// \param pairs k pairs {vertex of A, vertex of B}
@@ -39,6 +62,11 @@ Landmarks read_landmarks(std::istream& in, const std::string& name, int n_vertic
 ///        side, or if there are fewer than 2 pairs.
 Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, const std::string& name, int n_vertices_a,
                          int n_vertices_b);
+
+/// The token of a landmark in the format above: `123` for a vertex point, `f<face>:<b0>,<b1>,<b2>` for a face point
+/// (each coordinate the shortest text that reads back as the same double).
+/// \pre p is a vertex or face point
+std::string landmark_token(const SurfacePoint& p);
 
 /// Writes landmarks in the format above.
 /// \throw IoError if the file cannot be written.

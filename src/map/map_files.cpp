@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <utility>
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
@@ -33,10 +34,16 @@ MapInputs read_map_inputs(const std::string& path_a, const std::string& path_b, 
   MapInputs in{path_a, path_b, {}, {}, {}, false, false};
   in.a = read_mesh(path_a);
   in.b = read_mesh(path_b);
-  in.landmarks = read_landmarks(landmarks_path, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
+  in.landmarks = read_landmarks(landmarks_path, in.a.V, in.a.F, in.b.V, in.b.F);
+  if (warning) {
+    for (const std::string& w : in.landmarks.warnings) warning(w);
+  }
   if (fix) {
     in.reversed_a = fix_orientation(in.a, path_a, warning);
     in.reversed_b = fix_orientation(in.b, path_b, warning);
+    // Face points in the corner order of the reversed faces (the swap is its own inverse).
+    in.landmarks.a = images_in_given_order(std::move(in.landmarks.a), in.reversed_a);
+    in.landmarks.b = images_in_given_order(std::move(in.landmarks.b), in.reversed_b);
   }
   prepare_output_folder(out_dir, map_output_names(), {path_a, path_b, landmarks_path});
   return in;

@@ -199,8 +199,8 @@ using Progress = std::function<void(const std::string&, const std::string&)>;
 
 /// Step 1: both meshes cut to disks along the same tree (paper §3.1); the disks' connectivity and positions.
 void cut_stage(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
-               const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
-               const std::vector<VertexId>& landmarks_b, const MapOptions& options, const Progress& progress,
+               const Eigen::MatrixXi& FB, const std::vector<SurfacePoint>& landmarks_a,
+               const std::vector<SurfacePoint>& landmarks_b, const MapOptions& options, const Progress& progress,
                MapResult& r) {
   const auto t0 = Clock::now();
   progress("cut",
@@ -350,8 +350,8 @@ void verify_overlay(const MapResult& r, MapVerification& ver) {
 
 }  // namespace
 
-MapVerification verify_map(const MapResult& r, const std::vector<VertexId>& landmarks_a,
-                           const std::vector<VertexId>& landmarks_b) {
+MapVerification verify_map(const MapResult& r, const std::vector<SurfacePoint>& landmarks_a,
+                           const std::vector<SurfacePoint>& landmarks_b) {
   const MapIndex& index = *r.index;
   const Eigen::MatrixXd& VA = index.VA;
   const Eigen::MatrixXd& VB = index.VB;
@@ -393,12 +393,19 @@ MapVerification verify_map(const MapResult& r, const std::vector<VertexId>& land
     ver.round_trip_error =
         std::max(ver.round_trip_error, (tb.position(back) - row3(VB, static_cast<int>(v))).norm() / sqrt_area_b);
   }
+  // A vertex landmark's image is the input map's; any other is evaluated (it is a refined vertex, so exactly).
+  const auto image = [&](Side side, const SurfacePoint& x) {
+    const std::vector<SurfacePoint>& input_map = side == Side::kA ? r.a_to_b : r.b_to_a;
+    return x.kind == SurfacePoint::Kind::kVertex ? input_map[static_cast<size_t>(x.vertex.idx)]
+                                                 : evaluate_map(r, side, x);
+  };
   for (size_t i = 0; i < landmarks_a.size(); ++i) {
-    const int la = landmarks_a[i].idx, lb = landmarks_b[i].idx;
-    ver.landmark_error = std::max(ver.landmark_error,
-                                  (tb.position(r.a_to_b[static_cast<size_t>(la)]) - row3(VB, lb)).norm() / sqrt_area_b);
-    ver.landmark_error = std::max(ver.landmark_error,
-                                  (ta.position(r.b_to_a[static_cast<size_t>(lb)]) - row3(VA, la)).norm() / sqrt_area_a);
+    const Eigen::Vector3d pa = ta.position(as_face_point(index.input_a, landmarks_a[i]));
+    const Eigen::Vector3d pb = tb.position(as_face_point(index.input_b, landmarks_b[i]));
+    ver.landmark_error =
+        std::max(ver.landmark_error, (tb.position(image(Side::kA, landmarks_a[i])) - pb).norm() / sqrt_area_b);
+    ver.landmark_error =
+        std::max(ver.landmark_error, (ta.position(image(Side::kB, landmarks_b[i])) - pa).norm() / sqrt_area_a);
   }
   auto require = [&](bool ok, const std::string& what) {
     if (!ok) ver.failures.push_back(what);
@@ -441,6 +448,12 @@ void map_distortion(MapResult& r, int samples_per_edge) {
 MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
                      const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
                      const std::vector<VertexId>& landmarks_b, const MapOptions& options) {
+  return map_meshes(VA, FA, VB, FB, vertex_points(landmarks_a), vertex_points(landmarks_b), options);
+}
+
+MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<SurfacePoint>& landmarks_a,
+                     const std::vector<SurfacePoint>& landmarks_b, const MapOptions& options) {
   const auto t_start = Clock::now();
   const Progress progress = [&](const std::string& stage, const std::string& message) {
     if (options.progress) options.progress(stage, message);

@@ -82,6 +82,7 @@ struct MapVerification {
   double lifting_residual = 0;        ///< max |Psi(f(x)) - Phi(x)| and |Phi(g(y)) - Psi(y)| over vertices, / diameter
   double round_trip_error = 0;        ///< max |g(f(v)) - v| and |f(g(w)) - w| in R^3 over input vertices, / sqrt(area)
   double landmark_error = 0;          ///< max distance in R^3 from f(landmark) to its partner (and for g), / sqrt(area)
+                                      ///< of the partner's mesh; surface-point landmarks too
   /// With MapOptions::overlay: its checks (check_overlay) and MapResult::overlay_agreement (an overlay
   /// vertex's point on one side against the bijection's image of its point on the other).
   OverlayCheck overlay;
@@ -133,12 +134,19 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
                      const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
                      const std::vector<VertexId>& landmarks_b, const MapOptions& options = {});
 
+/// map_meshes with landmarks anywhere on the surfaces: k >= 2 corresponding vertex, edge or face points of the
+/// input meshes (a face point's coordinates in the order of its row of F). Each becomes a vertex of the refined
+/// mesh (cut_meshes), so f takes it exactly onto its partner.
+MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
+                     const Eigen::MatrixXi& FB, const std::vector<SurfacePoint>& landmarks_a,
+                     const std::vector<SurfacePoint>& landmarks_b, const MapOptions& options = {});
+
 /// The checks of a map made by map_meshes (MapVerification's fields): both flattenings free of flipped faces with
 /// boundary angle sums below 2 pi, Psi(f(x)) = Phi(x) and Phi(g(y)) = Psi(y) at every cut vertex (the lifting),
 /// g(f(v)) = v and f(g(w)) = w in R^3 at every input vertex, and f(landmark) = its partner.
 /// \pre `map` has its cut, flattening, bijection and input maps (the stages of map_meshes before verification)
-MapVerification verify_map(const MapResult& map, const std::vector<VertexId>& landmarks_a,
-                           const std::vector<VertexId>& landmarks_b);
+MapVerification verify_map(const MapResult& map, const std::vector<SurfacePoint>& landmarks_a,
+                           const std::vector<SurfacePoint>& landmarks_b);
 
 /// The distortion max(Sigma, 1/sigma) of the flattenings per face and of the maps f and g by dense sampling (each face
 /// split into samples_per_edge^2 sub-triangles, sub_triangle_centroids), both meshes scaled to the same area as the

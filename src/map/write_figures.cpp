@@ -37,9 +37,11 @@ std::vector<Eigen::MatrixXd> cut_polylines(const CutSide& side) {
   return lines;
 }
 
-Eigen::MatrixXd landmark_positions(const Eigen::MatrixXd& V, const std::vector<VertexId>& landmarks) {
+Eigen::MatrixXd landmark_positions(const TriangleMesh& mesh, const std::vector<SurfacePoint>& landmarks) {
+  const Mesh connectivity(mesh.F, static_cast<int>(mesh.V.rows()));
   Eigen::MatrixXd L(static_cast<Eigen::Index>(landmarks.size()), 3);
-  for (size_t i = 0; i < landmarks.size(); ++i) L.row(static_cast<Eigen::Index>(i)) = V.row(landmarks[i].idx);
+  for (size_t i = 0; i < landmarks.size(); ++i)
+    L.row(static_cast<Eigen::Index>(i)) = interpolate(connectivity, mesh.V, landmarks[i]);
   return L;
 }
 
@@ -52,20 +54,20 @@ void write_mtl(const std::string& path, const std::string& texture) {
 }  // namespace
 
 void write_map_render(const std::string& path, const MapResult& map, const TriangleMesh& a, const TriangleMesh& b,
-                      const std::vector<VertexId>& landmarks_a, const std::vector<VertexId>& landmarks_b,
+                      const std::vector<SurfacePoint>& landmarks_a, const std::vector<SurfacePoint>& landmarks_b,
                       const std::string& label_a, const std::string& label_b) {
   FigurePanel pa;
   pa.V = a.V;
   pa.F = a.F;
   pa.cut_paths = cut_polylines(map.cut.a);
-  pa.landmarks = landmark_positions(a.V, landmarks_a);
+  pa.landmarks = landmark_positions(a, landmarks_a);
   pa.label = label_a;
   FigurePanel pb;
   pb.V = b.V;
   pb.F = b.F;
   pb.T = positions_on(a, map.b_to_a);  // B's texture lookup point on A: g(V_B)
   pb.cut_paths = cut_polylines(map.cut.b);
-  pb.landmarks = landmark_positions(b.V, landmarks_b);
+  pb.landmarks = landmark_positions(b, landmarks_b);
   pb.label = label_b;
   write_png(path, render_map_figure(pa, pb));
 }

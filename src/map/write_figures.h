@@ -13,7 +13,7 @@ namespace liftmap {
 /// matching viewpoints (the paper's Figure 1).
 /// \param label_a, label_b captions of the two panels
 void write_map_render(const std::string& path, const MapResult& map, const TriangleMesh& a, const TriangleMesh& b,
-                      const std::vector<VertexId>& landmarks_a, const std::vector<VertexId>& landmarks_b,
+                      const std::vector<SurfacePoint>& landmarks_a, const std::vector<SurfacePoint>& landmarks_b,
                       const std::string& label_a, const std::string& label_b);
 
 /// Writes `distortion.png`: the area-weighted histogram of the sampled distortion of f with its mean (Figure 9).

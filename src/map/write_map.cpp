@@ -58,7 +58,12 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"B", {{"file", path_b}, {"vertices", b.V.rows()}, {"faces", b.F.rows()}}},
   };
   nlohmann::json lm = nlohmann::json::array();
-  for (size_t i = 0; i < landmarks.a.size(); ++i) lm.push_back({landmarks.a[i].idx, landmarks.b[i].idx});
+  for (size_t i = 0; i < landmarks.a.size(); ++i) {
+    const auto token = [](const SurfacePoint& p) {
+      return p.kind == SurfacePoint::Kind::kVertex ? nlohmann::json(p.vertex.idx) : nlohmann::json(landmark_token(p));
+    };
+    lm.push_back({token(landmarks.a[i]), token(landmarks.b[i])});
+  }
   j["landmarks"] = lm;
   j["options"] = {
       {"p", std::isinf(options.flatten.p) ? nlohmann::json("inf") : nlohmann::json(options.flatten.p)},
@@ -165,7 +170,10 @@ std::vector<SurfacePoint> images_in_given_order(std::vector<SurfacePoint> images
 }
 
 nlohmann::json map_report(const MapResult& map, const MapInputs& inputs, const MapOptions& options) {
-  nlohmann::json j = map_report(map, inputs.name_a, inputs.a, inputs.name_b, inputs.b, inputs.landmarks, options);
+  Landmarks given = inputs.landmarks;  // the landmarks' tokens as in the file
+  given.a = images_in_given_order(std::move(given.a), inputs.reversed_a);
+  given.b = images_in_given_order(std::move(given.b), inputs.reversed_b);
+  nlohmann::json j = map_report(map, inputs.name_a, inputs.a, inputs.name_b, inputs.b, given, options);
   j["input"]["A"]["faces_reversed"] = inputs.reversed_a;
   j["input"]["B"]["faces_reversed"] = inputs.reversed_b;
   return j;

@@ -35,7 +35,8 @@ struct MapInputs {
 };
 
 /// The images of a map in the vertex order of the target's faces as given, before reverse_if_inside_out: the
-/// order of the map files (barycentric coordinates 1 and 2 swapped if the target's faces were reversed).
+/// order of the map files (barycentric coordinates 1 and 2 swapped if the target's faces were reversed). The swap
+/// is its own inverse: it also takes face points as given (landmarks) to the order of the reversed faces.
 std::vector<SurfacePoint> images_in_given_order(std::vector<SurfacePoint> images, bool target_reversed);
 
 /// The report of a map as JSON (report.json), with "faces_reversed" per input.

@@ -93,7 +93,7 @@ inline std::vector<int> ccw_loop(const Mesh& cut) {
 }
 
 /// Checks every invariant of one cut side; returns its cut mesh boundary loop.
-inline void check_side(const CutSide& s, const TriangleMesh& in, const std::vector<VertexId>& landmarks,
+inline void check_side(const CutSide& s, const TriangleMesh& in, const std::vector<SurfacePoint>& landmarks,
                        const std::vector<std::array<int, 2>>& tree, const std::string& what) {
   SCOPED_TRACE(what);
   const Mesh input(in.F, static_cast<int>(in.V.rows()));
@@ -128,9 +128,12 @@ inline void check_side(const CutSide& s, const TriangleMesh& in, const std::vect
       EXPECT_TRUE(wa >= -tol && wb >= -tol && wc >= -tol) << "refined face " << f;
     }
   }
-  // Landmarks are the input's vertices.
+  // Input vertex i is refined vertex i; every landmark is a refined vertex at exactly its point.
+  ASSERT_GE(s.V.rows(), in.V.rows());
+  EXPECT_EQ(s.V.topRows(in.V.rows()), in.V);
   for (size_t i = 0; i < landmarks.size(); ++i) {
-    EXPECT_LT((s.V.row(s.landmarks[i]) - in.V.row(landmarks[i].idx)).norm(), 1e-12 * scale);
+    EXPECT_LT((s.V.row(s.landmarks[i]) - interpolate(input, in.V, landmarks[i])).norm(), 1e-12 * scale)
+        << "landmark " << i;
   }
   // Paths are simple, meet only at shared landmarks, pass through no other landmark.
   std::map<int, int> path_of;  // interior path vertex -> path
@@ -177,7 +180,7 @@ inline std::vector<std::vector<int>> rotation_system(const CutSide& s) {
 
 /// Checks both sides and nu.
 inline void check_cut(const CutResult& r, const TriangleMesh& ma, const TriangleMesh& mb,
-                      const std::vector<VertexId>& la, const std::vector<VertexId>& lb) {
+                      const std::vector<SurfacePoint>& la, const std::vector<SurfacePoint>& lb) {
   ASSERT_EQ(r.tree.size(), la.size() - 1);
   check_side(r.a, ma, la, r.tree, "mesh A");
   check_side(r.b, mb, lb, r.tree, "mesh B");
@@ -212,6 +215,11 @@ inline void check_cut(const CutResult& r, const TriangleMesh& ma, const Triangle
     }
   }
   EXPECT_EQ(copies, degree);
+}
+
+inline void check_cut(const CutResult& r, const TriangleMesh& ma, const TriangleMesh& mb,
+                      const std::vector<VertexId>& la, const std::vector<VertexId>& lb) {
+  check_cut(r, ma, mb, vertex_points(la), vertex_points(lb));
 }
 
 struct Case {

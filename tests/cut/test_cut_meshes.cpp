@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <set>
+
 #include "core/errors.h"
 #include "cut_test_util.h"
 
@@ -49,6 +52,64 @@ TEST(cut_meshes, AFaceThatCannotBeRetriangulatedKeepsTheTracedTriangulation) {
   // The cut sweep's configuration in which tracing left two refined vertices at one point of an input face: the
   // constrained Delaunay re-triangulation cannot take it, and the cut goes on with the traced triangulation.
   run({"triceratops", "cow"}, 16, Pattern::kClose, 1349420280);
+}
+
+/// k landmarks anywhere on a mesh, seeded: points inside random faces (the first two in one face), on edges (a
+/// zero coordinate) and at vertices, as a landmark file gives them (face points in the order of F's rows).
+std::vector<SurfacePoint> surface_landmarks(const TriangleMesh& m, int k, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.05, 0.9);
+  std::set<int> faces;
+  std::vector<SurfacePoint> out;
+  int f = static_cast<int>(rng() % static_cast<unsigned>(m.F.rows()));
+  for (int i = 0; i < k; ++i) {
+    if (i > 1) {
+      do {
+        f = static_cast<int>(rng() % static_cast<unsigned>(m.F.rows()));
+      } while (faces.count(f));
+    }
+    faces.insert(f);
+    const double a = u(rng), b = u(rng) * (1 - a);
+    std::array<double, 3> w{a, b, 1 - a - b};
+    if (i % 4 == 2) w = {a, 1 - a, 0};  // on an edge
+    if (i % 4 == 3) {                   // at a vertex
+      out.push_back(SurfacePoint::at_vertex(VertexId(m.F(f, 0))));
+      continue;
+    }
+    out.push_back(SurfacePoint::in_face(FaceId(f), w));
+  }
+  return out;
+}
+
+TEST(cut_meshes, SurfacePointLandmarksBecomeVerticesAtTheirPoints) {
+  const Case cases[] = {{"cow", "triceratops"}, {"hand", "blobby"}, {"bull", "dino"}};
+  unsigned seed = 500;
+  for (const Case& c : cases) {
+    const auto ma = test::load(c.a), mb = test::load(c.b);
+    for (const int k : {2, 5, 12}) {
+      SCOPED_TRACE(std::string(c.a) + "-" + c.b + " k=" + std::to_string(k) + " seed=" + std::to_string(seed));
+      std::mt19937 rng(seed++);
+      const auto la = surface_landmarks(ma, k, rng);
+      const auto lb = surface_landmarks(mb, k, rng);
+      const CutResult r = cut_meshes(ma.V, ma.F, mb.V, mb.F, la, lb);
+      test::check_cut(r, ma, mb, la, lb);
+    }
+  }
+}
+
+TEST(cut_meshes, RejectsSurfaceLandmarksAtOnePoint) {
+  const auto m = test::load("cow");
+  const std::vector<SurfacePoint> ok{SurfacePoint::at_vertex(VertexId(0)), SurfacePoint::at_vertex(VertexId(1))};
+  // A face point with one positive coordinate is its corner: the vertex landmark 0 again.
+  const int corner = m.F(7, 1);
+  const std::vector<SurfacePoint> same_vertex{SurfacePoint::at_vertex(VertexId(corner)),
+                                              SurfacePoint::in_face(FaceId(7), {0, 1, 0})};
+  EXPECT_THROW(cut_meshes(m.V, m.F, m.V, m.F, same_vertex, ok), InvalidInputError);
+  const std::vector<SurfacePoint> same_face_point{SurfacePoint::in_face(FaceId(7), {0.2, 0.3, 0.5}),
+                                                  SurfacePoint::in_face(FaceId(7), {0.2, 0.3, 0.5})};
+  EXPECT_THROW(cut_meshes(m.V, m.F, m.V, m.F, ok, same_face_point), InvalidInputError);
+  const std::vector<SurfacePoint> bad_face{SurfacePoint::at_vertex(VertexId(0)),
+                                           SurfacePoint::in_face(FaceId(static_cast<int>(m.F.rows())), {1, 0, 0})};
+  EXPECT_THROW(cut_meshes(m.V, m.F, m.V, m.F, bad_face, ok), InvalidInputError);
 }
 
 TEST(cut_meshes, PathTreeOption) {

@@ -3,13 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <random>
 #include <set>
+#include <sstream>
 
 #include "common/test_meshes.h"
 #include "core/errors.h"
+#include "io/landmarks.h"
 #include "map/write_map.h"
 
 namespace liftmap {
@@ -94,6 +97,58 @@ TEST(MapMeshes, SpheresWithThePrimalDualSolver) {
   MapOptions two;
   two.flatten.method = SubproblemSolver::kPrimalDual;
   expect_valid_map(sphere, ellipsoid, 6, 106, two);
+}
+
+// Landmarks given as face points, points on edges and 3D points (through the landmark file's reader) map exactly
+// onto their partners: each is a vertex of the refined mesh at exactly its point.
+TEST(MapMeshes, SurfacePointLandmarksMapExactly) {
+  const TriangleMesh sphere = testing::read_demo_mesh("larger_sphere.off");
+  const TriangleMesh ellipsoid = testing::read_demo_mesh("ellipsoid.off");
+  // The axis extremes of examples/sphere-ellipsoid, moved off the vertices into a face around each.
+  const Mesh mesh_a(sphere.F, static_cast<int>(sphere.V.rows()));
+  const Mesh mesh_b(ellipsoid.F, static_cast<int>(ellipsoid.V.rows()));
+  const auto face_at = [](const Mesh& m, int v) { return m.face(m.halfedge(VertexId(v))).idx; };
+  const auto point_3d = [](const TriangleMesh& m, int f, const std::array<double, 3>& b) {
+    const Eigen::Vector3d x = position(m, SurfacePoint::in_face(FaceId(f), b));
+    char s[128];
+    std::snprintf(s, sizeof s, "%.17g,%.17g,%.17g", x.x(), x.y(), x.z());
+    return std::string(s);
+  };
+  const int pairs[6][2] = {{286, 117}, {276, 138}, {294, 0}, {314, 11}, {304, 70}, {280, 46}};
+  std::ostringstream file;
+  file << pairs[0][0] << " " << pairs[0][1] << "\n";  // vertices
+  for (int i = 1; i < 6; ++i) {
+    const int fa = face_at(mesh_a, pairs[i][0]), fb = face_at(mesh_b, pairs[i][1]);
+    if (i % 2 == 1) {  // a face point of A, a 3D point on B
+      file << "f" << fa << ":0.5,0.3,0.2 " << point_3d(ellipsoid, fb, {0.25, 0.25, 0.5}) << "\n";
+    } else {  // a point on an edge of A, a face point of B
+      file << "f" << fa << ":0.6,0,0.4 f" << fb << ":0.1,0.2,0.7\n";
+    }
+  }
+  std::istringstream in(file.str());
+  const Landmarks lm = read_landmarks(in, "surface.txt", sphere.V, sphere.F, ellipsoid.V, ellipsoid.F);
+  EXPECT_TRUE(lm.warnings.empty());
+  MapOptions options;
+  options.flatten.max_iterations = 3;
+  const MapResult map = map_meshes(sphere.V, sphere.F, ellipsoid.V, ellipsoid.F, lm.a, lm.b, options);
+  const MapVerification& v = map.verification;
+  EXPECT_TRUE(v.passed) << (v.failures.empty() ? "" : v.failures.front());
+  EXPECT_LE(v.landmark_error, 1e-12);
+  const double diag_a = (sphere.V.colwise().maxCoeff() - sphere.V.colwise().minCoeff()).norm();
+  const double diag_b = (ellipsoid.V.colwise().maxCoeff() - ellipsoid.V.colwise().minCoeff()).norm();
+  for (size_t i = 0; i < lm.a.size(); ++i) {
+    const Eigen::Vector3d pa = interpolate(mesh_a, sphere.V, lm.a[i]).transpose();
+    const Eigen::Vector3d pb = interpolate(mesh_b, ellipsoid.V, lm.b[i]).transpose();
+    // The inserted vertex is the requested point.
+    EXPECT_LT((map.cut.a.V.row(map.cut.a.landmarks[i]).transpose() - pa).norm(), 1e-12 * diag_a) << i;
+    EXPECT_LT((map.cut.b.V.row(map.cut.b.landmarks[i]).transpose() - pb).norm(), 1e-12 * diag_b) << i;
+    // f and g take it onto its partner.
+    const SurfacePoint fa = evaluate_map(map, Side::kA, lm.a[i]);
+    const SurfacePoint gb = evaluate_map(map, Side::kB, lm.b[i]);
+    EXPECT_LT((position(ellipsoid, fa) - pb).norm(), 1e-12 * sqrt_area(ellipsoid)) << i;
+    EXPECT_LT((position(sphere, gb) - pa).norm(), 1e-12 * sqrt_area(sphere)) << i;
+  }
+  EXPECT_EQ(lm.b[1].kind, SurfacePoint::Kind::kFace);  // the 3D point, located in its face
 }
 
 TEST(MapMeshes, MapFilesRoundTrip) {
