@@ -87,6 +87,35 @@ def test_transfer_any_width(sphere_map, pair):
     assert sphere_map.transfer(np.ones(len(VB)), source="B").shape == (len(VA),)
 
 
+def test_overlay_tiles_both_meshes_and_matches_overlay_obj(sphere_map, pair, cli_out):
+    VA, FA, VB, FB, _ = pair
+    o = sphere_map.overlay
+    n, m = len(o["V_A"]), len(o["F"])
+    assert o["V_B"].shape == (n, 3) and o["F"].shape == (m, 3) and m > len(FA) + len(FB)
+    # Every vertex is its points on A and on B.
+    for side, V, F in (("A", VA, FA), ("B", VB, FB)):
+        points = np.einsum("ik,ikj->ij", o["barycentric_" + side], V[F[o["faces_" + side]]])
+        np.testing.assert_allclose(points, o["V_" + side], atol=1e-14)
+        # The triangles tile the mesh: per input face, their areas sum to its area.
+        T = o["V_" + side][o["F"]]
+        area = 0.5 * np.linalg.norm(np.cross(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0]), axis=1)
+        per_face = np.bincount(o["face_" + side], weights=area, minlength=len(F))
+        C = V[F]
+        face_area = 0.5 * np.linalg.norm(np.cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0]), axis=1)
+        np.testing.assert_allclose(per_face, face_area, rtol=1e-9, atol=1e-15)
+    # The same mesh as the CLI's overlay.obj.
+    rows = [line.split() for line in open(cli_out / "overlay.obj") if line[:2] in ("v ", "f ")]
+    V = np.array([[float(x) for x in r[1:]] for r in rows if r[0] == "v"])
+    F = np.array([[int(x) - 1 for x in r[1:]] for r in rows if r[0] == "f"])
+    np.testing.assert_array_equal(V, o["V_A"])
+    np.testing.assert_array_equal(F, o["F"])
+
+
+def test_no_overlay(pair):
+    m = liftmap.map(*pair, overlay=False, threads=THREADS)
+    assert len(m.overlay["F"]) == 0 and "overlay" not in m.report
+
+
 def test_cut_and_flattenings(sphere_map):
     cut = sphere_map.cut
     k = len(cut["tree"]) + 1
