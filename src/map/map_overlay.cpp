@@ -50,7 +50,10 @@ double disk_agreement(const MapResult& map, const DiskOverlay& disk) {
   const double unit_a = std::sqrt(total_area(map.disk_va, map.cut.a.F_cut));
   const double unit_b = std::sqrt(total_area(map.disk_vb, map.cut.b.F_cut));
   double worst = 0;
-  for (size_t i = 0; i < disk.on_m.size(); ++i) {
+  const auto n = static_cast<int>(disk.on_m.size());
+#pragma omp parallel for schedule(static) reduction(max : worst)
+  for (int k = 0; k < n; ++k) {
+    const auto i = static_cast<size_t>(k);
     const double ef = image_distance(map.disk_b, map.disk_vb, map.bijection->evaluate_f(disk.on_m[i]), disk.on_n[i]);
     const double eg = image_distance(map.disk_a, map.disk_va, map.bijection->evaluate_g(disk.on_n[i]), disk.on_m[i]);
     worst = std::max({worst, ef / unit_b, eg / unit_a});
@@ -81,6 +84,7 @@ Overlay overlay_of_map(const MapResult& map, double* agreement) {
   o.VB.resize(nv, 3);
   o.on_a.resize(first.size());
   o.on_b.resize(first.size());
+#pragma omp parallel for schedule(static)
   for (Eigen::Index v = 0; v < nv; ++v) {
     const size_t i = first[static_cast<size_t>(v)];
     o.on_a[static_cast<size_t>(v)] = disk_to_input(map, Side::kA, disk.on_m[i]);
