@@ -94,28 +94,6 @@ std::vector<FaceId> faces_over(const LiftedBijection& bijection, const Mesh& M, 
   return found;
 }
 
-/// The corners of Phi(fm) ∩ Psi(fn), counter-clockwise, without repeats; empty if the cell has no area.
-std::vector<Point> cell_polygon(const std::array<Point, 3>& a, const std::array<Point, 3>& b) {
-  const auto result = CGAL::intersection(Triangle(a[0], a[1], a[2]), Triangle(b[0], b[1], b[2]));
-  std::vector<Point> poly;
-  if (!result) return poly;
-  if (const auto* t = boost::get<Triangle>(&*result)) {
-    poly = {t->vertex(0), t->vertex(1), t->vertex(2)};
-  } else if (const auto* v = boost::get<std::vector<Point>>(&*result)) {
-    poly = *v;
-  } else {
-    return poly;
-  }
-  poly.erase(std::unique(poly.begin(), poly.end()), poly.end());
-  while (poly.size() > 1 && poly.front() == poly.back()) poly.pop_back();
-  if (poly.size() < 3) return {};
-  Kernel::FT area2 = 0;
-  for (size_t i = 1; i + 1 < poly.size(); ++i) area2 += CGAL::area(poly[0], poly[i], poly[i + 1]);
-  if (CGAL::is_zero(area2)) return {};
-  if (CGAL::is_negative(area2)) std::reverse(poly.begin(), poly.end());
-  return poly;
-}
-
 /// Where a cell corner lies in a face's closure: the smallest element holding it.
 struct Located {
   SurfacePoint::Kind kind = SurfacePoint::Kind::kFace;
