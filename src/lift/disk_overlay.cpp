@@ -317,6 +317,7 @@ std::vector<Corner> exact_cell(const std::array<Eigen::Vector2d, 3>& a, const st
   if (CGAL::is_zero(area2)) return {};
   if (CGAL::is_negative(area2)) std::reverse(poly.begin(), poly.end());
   std::vector<Corner> out;
+  out.reserve(poly.size());
   for (const Point& p : poly)
     out.push_back({exact_locate(ea, p),
                    exact_locate(eb, p),
