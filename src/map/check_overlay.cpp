@@ -24,6 +24,10 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
                       double& face_error, int& uncovered, int& flipped, int& degenerate) {
     Eigen::VectorXd covered = Eigen::VectorXd::Zero(F.rows());
     Eigen::VectorXi count = Eigen::VectorXi::Zero(F.rows());
+    Eigen::VectorXd face_area(F.rows());
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      face_area(f) = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2))).norm();
+    }
     for (Eigen::Index t = 0; t < overlay.F.rows(); ++t) {
       const int f = side == Side::kA ? overlay.face_a(t) : overlay.face_b(t);
       const auto w = corner_barycentrics(overlay, F, side, static_cast<int>(t));
@@ -42,16 +46,13 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
     }
     double total = 0, sum = 0;
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      const double a = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2))).norm();
-      total += a;
+      total += face_area(f);
       sum += covered(f);
       if (count(f) == 0) ++uncovered;
     }
     const double mean = total / static_cast<double>(F.rows());
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      const double a = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2))).norm();
-      face_error = std::max(face_error, std::abs(covered(f) - a) / mean);
-    }
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      face_error = std::max(face_error, std::abs(covered(f) - face_area(f)) / mean);
     total_error = std::abs(sum - total) / total;
   };
   one_side(VA, FA, Side::kA, c.area_error_a, c.face_area_error_a, c.uncovered_faces_a, c.flipped_a, c.degenerate_a);

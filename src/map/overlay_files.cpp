@@ -46,12 +46,6 @@ SurfacePoint face_point(const Eigen::MatrixXd& T, Eigen::Index i, Eigen::Index c
   return SurfacePoint::in_face(FaceId(f), clamp_barycentric(b));
 }
 
-Eigen::RowVector3d position(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const SurfacePoint& p) {
-  Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
-  for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * V.row(F(p.face.idx, k));
-  return x;
-}
-
 }  // namespace
 
 std::array<std::string, 2> overlay_table_paths(const std::string& obj_path) {
@@ -105,7 +99,6 @@ Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, con
   Overlay o;
   o.VA = mesh.V;
   o.F = mesh.F;
-  o.VB.resize(P.rows(), 3);
   o.on_a.resize(static_cast<size_t>(P.rows()));
   o.on_b.resize(static_cast<size_t>(P.rows()));
   const auto nfa = static_cast<int>(FA.rows()), nfb = static_cast<int>(FB.rows());
@@ -113,8 +106,8 @@ Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, con
     const std::string where = points_path + ":" + std::to_string(point_lines[static_cast<size_t>(i)]) + ": ";
     o.on_a[static_cast<size_t>(i)] = face_point(P, i, 0, nfa, where, "A");
     o.on_b[static_cast<size_t>(i)] = face_point(P, i, 4, nfb, where, "B");
-    o.VB.row(i) = position(VB, FB, o.on_b[static_cast<size_t>(i)]);
   }
+  o.VB = interpolate_at(FB, VB, o.on_b);
   o.face_a.resize(T.rows());
   o.face_b.resize(T.rows());
   for (Eigen::Index t = 0; t < T.rows(); ++t) {
