@@ -2,8 +2,12 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseLU>
+#include <omp.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <exception>
 #include <string>
 
 #include "core/errors.h"
@@ -99,9 +103,9 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
   }
   std::vector<Eigen::MatrixXd> result(weights.size(), U);
   if (m == 0) return result;
-  // One sparsity pattern for every set of weights: analysed once, factorised per set.
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  for (size_t s = 0; s < weights.size(); ++s) {
+  // The Laplacian of one set of weights, solved into result[s]. Every set has the same sparsity pattern, so each
+  // thread analyses it once (COLAMD depends on the pattern only: the embeddings are the same on any thread count).
+  const auto solve_set = [&](size_t s, Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu, bool analyze) {
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(2 * corners.size());
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, 2);
@@ -118,7 +122,7 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
     }
     Eigen::SparseMatrix<double> L(m, m);
     L.setFromTriplets(triplets.begin(), triplets.end());
-    if (s == 0) lu.analyzePattern(L);
+    if (analyze) lu.analyzePattern(L);
     lu.factorize(L);
     if (lu.info() != Eigen::Success) throw PipelineError("tutte_embedding: the mean-value Laplacian is singular");
     const Eigen::MatrixXd X = lu.solve(rhs);
@@ -127,6 +131,25 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
       const int u = unknown[static_cast<size_t>(v)];
       if (u >= 0) result[s].row(v) = X.row(u);
     }
+  };
+  // Two threads share the sets (a squeezed disk has about ten, each an LU factorisation: Eigen's own, which calls
+  // no BLAS, so two can run at once); an exception on either is rethrown after both have finished.
+  const int threads = weights.size() > 1 ? std::min(2, omp_get_max_threads()) : 1;
+  std::array<std::exception_ptr, 2> failed;
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    try {
+      for (size_t s = static_cast<size_t>(t); s < weights.size(); s += static_cast<size_t>(nt)) {
+        solve_set(s, lu, s == static_cast<size_t>(t));
+      }
+    } catch (...) {
+      failed[static_cast<size_t>(t)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
   }
   return result;
 }

@@ -1,6 +1,7 @@
 #include "flatten/flattening_start.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -88,6 +89,30 @@ TEST(flatten_start, NoWorseThanPlainTutte) {
   EXPECT_LE(s.chosen.energy, energy(d, plain));
   ASSERT_FALSE(s.candidates.empty());
   EXPECT_EQ(s.candidates.front().drift, 0);
+}
+
+// The drifted embeddings are solved two at a time (one LU per thread): each must be bitwise the one solved alone,
+// on one thread or two, so that identical disks still get identical starts.
+TEST(flatten_start, DriftedEmbeddingsDoNotDependOnTheThreads) {
+  const testing::TestDisk d = testing::capped_tube(5);
+  const Eigen::MatrixXd B = unit_circle(d.boundary.size());
+  std::vector<double> depth(static_cast<size_t>(d.mesh->n_vertices()));
+  for (size_t v = 0; v < depth.size(); ++v) depth[v] = d.V(static_cast<Eigen::Index>(v), 2);
+  std::vector<TutteWeights> sets;
+  for (const double drift : {0.0, 0.5, 1.0, 2.0, 3.0}) sets.push_back({.depth = depth, .drift = drift});
+  const int threads = omp_get_max_threads();
+  std::vector<std::vector<Eigen::MatrixXd>> runs;
+  for (const int t : {1, 2}) {
+    omp_set_num_threads(t);
+    runs.push_back(tutte_embeddings(*d.mesh, d.V, d.boundary, B, sets));
+  }
+  omp_set_num_threads(threads);
+  for (size_t s = 0; s < sets.size(); ++s) {
+    const Eigen::MatrixXd alone = tutte_embedding(*d.mesh, d.V, d.boundary, B, sets[s]);
+    EXPECT_TRUE(runs[0][s] == alone) << "set " << s << " on one thread";
+    EXPECT_TRUE(runs[1][s] == alone) << "set " << s << " on two threads";
+    if (s > 0) EXPECT_FALSE(alone == runs[0][0]) << "the drift " << sets[s].drift << " changed nothing";
+  }
 }
 
 }  // namespace
