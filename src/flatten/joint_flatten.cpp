@@ -248,6 +248,11 @@ double start_gap(const JointFlattenOptions& options, const std::vector<JointFlat
   return gain > 0 ? options.start_gap_fraction * gain : 0;
 }
 
+bool can_refine(const JointFlattenOptions& options, const SubproblemSettings& solver) {
+  return options.refined_gap_fraction > 0 &&
+         options.refined_gap_fraction * options.relative_tolerance < solver.relative_gap;
+}
+
 bool uses_primal_dual(const JointFlattenOptions& options) {
   return options.method == SubproblemSolver::kPrimalDual ||
          (options.method == SubproblemSolver::kAuto && std::isinf(options.p));
@@ -323,10 +328,23 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     SubproblemSettings solver = options.solver;
     solver.relative_gap = subproblem_gap(options, res.iterations);
     solver.barrier.initial_gap = start_gap(options, res.iterations);
+    const auto solve = [&](const SubproblemSettings& settings) {
+      return primal_dual ? solve_convex_subproblem_primal_dual(sp, X, settings, cholesky, &assembly)
+                         : solve_convex_subproblem(sp, X, settings, cholesky, &assembly);
+    };
     SubproblemResult br;
+    int earlier_steps = 0;  // Newton steps of a first solve that the finer one below replaced
     try {
-      br = primal_dual ? solve_convex_subproblem_primal_dual(sp, X, solver, cholesky, &assembly)
-                       : solve_convex_subproblem(sp, X, solver, cholesky, &assembly);
+      br = solve(solver);
+      // The start X is feasible with objective E(X) (the rotations are its polar ones). A result above that at a
+      // gap coarser than the outer tolerance says only that X is within that gap of the optimum: the gap rule
+      // expected more progress than is left. Solve again, finer than the tolerance (refined_gap_fraction).
+      if (br.objective > subproblem_objective(sp, X) && can_refine(options, solver)) {
+        earlier_steps = br.iterations;
+        solver.relative_gap = options.refined_gap_fraction * options.relative_tolerance;
+        solver.barrier.initial_gap = 0.5 * solver.relative_gap;
+        br = solve(solver);
+      }
     } catch (const PipelineError& e) {
       // The previous iterate passed every liftability check: it is the result, with the reason it is the last.
       std::ostringstream msg;
@@ -336,12 +354,18 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       res.stop_reason = msg.str();
       break;
     }
-    // The start X is feasible with objective E(X) (the rotations are its polar ones): a result above that
-    // (only possible if the solver stopped early, far from the central path's end) would break monotonicity.
-    // Every iterate is strictly feasible, so the previous one is a valid (liftable) result: stop there rather
-    // than fail the whole map.
     const double start_objective = subproblem_objective(sp, X);
     if (br.objective > start_objective) {
+      // Certified within a gap g below the tolerance, yet not below the start: the subproblem's optimum is within
+      // g of E(X), so no outer iteration from X can lower the energy by the tolerance. X is converged.
+      if (br.converged() && solver.relative_gap < options.relative_tolerance) {
+        res.converged = true;
+        res.last_subproblem_steps = earlier_steps + br.iterations;
+        break;
+      }
+      // Otherwise (only possible if the solver stopped early, far from the central path's end) a step would break
+      // monotonicity. Every iterate is strictly feasible, so the previous one is a valid (liftable) result: stop
+      // there rather than fail the whole map.
       res.stop_reason = "the convex subproblem of outer iteration " + std::to_string(iter + 1) + " ended at " +
                         std::to_string(br.objective) + ", above its start's " + std::to_string(start_objective) + " (" +
                         std::to_string(br.iterations) + " Newton steps, " +
@@ -352,7 +376,8 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     JointFlattenIteration it;
     it.subproblem_objective = br.objective;
     it.subproblem_gap = solver.relative_gap;
-    it.newton_steps = br.iterations;
+    it.newton_steps = earlier_steps + br.iterations;
+    it.subproblem_refined = earlier_steps > 0;
     it.subproblem_converged = br.converged();
     it.stalled_centrings = br.stalled_centrings;
     it.subproblem_status = br.status;

@@ -66,6 +66,12 @@ struct JointFlattenOptions {
   /// previous minimiser, is within about that decrease of the new optimum. Half of gap_fraction, so that each
   /// subproblem after the first is a single centring from the previous minimiser. 0: off.
   double start_gap_fraction = 0.15;
+  /// A subproblem solved to a gap coarser than refined_gap_fraction times relative_tolerance that ends above its
+  /// start (the gap rule expected more progress than was left) is solved again from the same start, to that finer
+  /// gap, starting at half of it. Below 1, so that a second result above the start certifies convergence: the
+  /// subproblem's optimum is then within less than the tolerance of the start's energy
+  /// (JointFlattenResult::last_subproblem_steps). 0: off (the loop stops early there, stop_reason says why).
+  double refined_gap_fraction = 0.3;
   SubproblemSolver method = SubproblemSolver::kAuto;
   /// A disk whose plain Tutte start squeezed a face (FlatteningStart::squeezed) has its drifted start lowered in
   /// the symmetric Dirichlet energy, boundary fixed, never flipping a face (minimize_symmetric_dirichlet);
@@ -106,9 +112,16 @@ struct JointFlattenIteration {
   double subproblem_gap = 0;          ///< relative gap the subproblem was solved to (gap_fraction; 0 for the start)
   bool subproblem_converged = false;  ///< the solver certified its gap bound (SubproblemResult::converged)
   int stalled_centrings = 0;          ///< SubproblemResult::stalled_centrings
+  /// The subproblem was solved twice: first to subproblem_gap's coarser gap, which ended above its start, then
+  /// again from the same start at refined_gap_fraction times the outer tolerance (newton_steps counts both).
+  bool subproblem_refined = false;
   std::optional<SubproblemStatus> subproblem_status;  ///< why the subproblem's solve ended; none for the start
   double seconds = 0;  ///< wall time of this outer iteration (rotations + solve + checks); the start: of the start
 };
+
+/// Whether a subproblem solved at `solver`'s gap that ended above its start is solved again, finer
+/// (JointFlattenIteration::subproblem_refined): refined_gap_fraction times the outer tolerance is below that gap.
+[[nodiscard]] bool can_refine(const JointFlattenOptions& options, const SubproblemSettings& solver);
 
 /// The relative gap joint_flatten solves its next subproblem to, given the iterates so far (gap_fraction).
 [[nodiscard]] double subproblem_gap(const JointFlattenOptions& options,
@@ -122,6 +135,10 @@ struct JointFlattenResult {
   std::vector<Eigen::MatrixXd> Phi_iterates, Psi_iterates;  ///< every iterate if keep_iterates, else empty
   std::string stop_reason;          ///< why the outer loop stopped before converging, if it did (empty otherwise)
   bool converged = false;           ///< the relative tolerance was met before max_iterations
+  /// Newton steps of a last subproblem that ended at or above its start although certified to a gap below the
+  /// outer tolerance, which proves convergence without a new iterate (its optimum is within that gap of the
+  /// start); 0 if the loop converged on the energy's relative decrease, or did not converge.
+  int last_subproblem_steps = 0;
   double scale_m = 1, scale_n = 1;  ///< factors applied to the disks' coordinates internally
   std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start: drift, energy, smallest face area
   std::array<int, 2> start_steps{};               ///< Newton steps of each disk's start_optimization

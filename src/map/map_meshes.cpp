@@ -253,13 +253,18 @@ void flatten_stage(const MapOptions& options, const Progress& progress, MapResul
       << it.max_distortion << ", smallest face " << it.min_area_ratio << " of the mean";
     if (i > 0) {
       s << " (" << it.seconds << " s, " << it.newton_steps << " Newton steps"
-        << (it.subproblem_converged ? "" : ", subproblem gap not certified") << ")";
+        << (it.subproblem_converged ? "" : ", subproblem gap not certified")
+        << (it.subproblem_refined ? ", solved again to a finer gap" : "") << ")";
     }
     progress("flatten", s.str());
   };
   r.flattening = joint_flatten(m, n, flatten_options);
   r.seconds.flatten = seconds_since(t0);
   if (!r.flattening.stop_reason.empty()) progress("flatten", "stopped early: " + r.flattening.stop_reason);
+  if (r.flattening.last_subproblem_steps > 0) {
+    progress("flatten", "converged: a last subproblem, certified to a gap below the tolerance, found no lower energy (" +
+                            std::to_string(r.flattening.last_subproblem_steps) + " Newton steps)");
+  }
   r.scale_a = r.flattening.scale_m;
   r.scale_b = r.flattening.scale_n;
 }

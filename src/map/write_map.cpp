@@ -101,6 +101,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
          {"subproblem_gap", i.subproblem_gap},
          {"subproblem_converged", i.subproblem_converged},
          {"stalled_centrings", i.stalled_centrings},
+         {"subproblem_refined", i.subproblem_refined},
          {"subproblem_status", i.subproblem_status ? nlohmann::json(to_string(*i.subproblem_status)) : nullptr},
          {"seconds", i.seconds}});
   }
@@ -122,6 +123,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
                     {"seconds", relax.seconds}}},
                   {"iterations", it},
                   {"converged", map.flattening.converged},
+                  {"last_subproblem_steps", map.flattening.last_subproblem_steps},
                   {"stop_reason", map.flattening.stop_reason}};
   j["seconds"] = {{"cut", map.seconds.cut},         {"flatten", map.seconds.flatten}, {"lift", map.seconds.lift},
                   {"overlay", map.seconds.overlay}, {"verify", map.seconds.verify},   {"total", map.seconds.total}};
