@@ -211,7 +211,8 @@ JointFlattenProblem make_joint_flatten_problem(const FlatteningDisk& m, const Fl
     place_ghost_vertices(sp, jp.X0);
     if (options.joint_start.newton.max_iterations > 0) {
       const auto relax_start = std::chrono::steady_clock::now();
-      SymmetricDirichletResult r = relax_joint_start(sp, jp.X0, options.joint_start);
+      jp.cholesky = std::make_shared<SparseCholesky>();
+      SymmetricDirichletResult r = relax_joint_start(sp, jp.X0, options.joint_start, jp.cholesky.get());
       jp.joint_start = {.steps = r.iterations,
                         .energy_before = r.energy_start,
                         .energy_after = r.energy,
@@ -318,7 +319,8 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     res.iterations.push_back(it);
     if (options.on_iteration) options.on_iteration(0, it);
   }
-  SparseCholesky cholesky;
+  SparseCholesky own_cholesky;
+  SparseCholesky& cholesky = jp.cholesky != nullptr ? *jp.cholesky : own_cholesky;
   subproblem::AssemblyStructure assembly;  // shared by every subproblem: only rotations and ghost bounds change
   const bool primal_dual = uses_primal_dual(options);
   for (int iter = 0; iter < options.max_iterations; ++iter) {

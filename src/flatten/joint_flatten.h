@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "flatten/distortion.h"
 #include "flatten/flattening_start.h"
 #include "flatten/joint_start_relaxation.h"
+#include "flatten/sparse_cholesky.h"
 #include "flatten/subproblem.h"
 #include "flatten/symmetric_dirichlet.h"
 
@@ -171,6 +173,9 @@ struct JointFlattenProblem {
   std::array<int, 2> start_steps{};               ///< Newton steps of each disk's start_optimization
   JointStartRelaxation joint_start;               ///< the joint relaxation of the start
   double scale_m = 1, scale_n = 1;
+  /// The relaxation's factorisation, analysed for its system (null if it did not run): the convex subproblems reuse
+  /// the analysis where their system has the same pattern (SparseCholesky::has_pattern_of).
+  std::shared_ptr<SparseCholesky> cholesky;
 };
 
 /// Normalises, validates, builds the slots and ghost faces, and computes the start (flattening_start).

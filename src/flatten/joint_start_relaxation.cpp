@@ -5,7 +5,7 @@
 namespace liftmap {
 
 SymmetricDirichletResult relax_joint_start(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                           const JointStartRelaxationOptions& options) {
+                                           const JointStartRelaxationOptions& options, SparseCholesky* cholesky) {
   std::vector<SymmetricDirichletTerm> terms;
   for (const SubproblemMesh& mesh : problem.meshes) {
     terms.push_back({.jacobian = &mesh.jacobian, .F = &mesh.F, .slot = &mesh.slot, .weight = 1, .own_solve = true});
@@ -16,7 +16,7 @@ SymmetricDirichletResult relax_joint_start(const ConvexSubproblem& problem, cons
   }
   std::vector<char> fixed(static_cast<size_t>(X0.rows()), 0);
   if (!fixed.empty()) fixed[0] = 1;
-  return minimize_symmetric_dirichlet(terms, fixed, X0, options.newton);
+  return minimize_symmetric_dirichlet(terms, fixed, X0, options.newton, cholesky);
 }
 
 }  // namespace liftmap

@@ -36,9 +36,12 @@ struct JointStartRelaxationOptions {
 /// shape is problem.ghosts' (the caller re-places the ghosts for the result, place_ghost_vertices).
 /// \param problem the joint problem (both meshes' slots and Jacobian operators; ghost faces, if any, placed for X0)
 /// \param X0 #slots by 2 positions, every face of both disks and every ghost face positively oriented
+/// \param cholesky as minimize_symmetric_dirichlet()'s: left analysed for the relaxation's system, whose pattern is
+///        the convex subproblems' (joint_flatten reuses it)
 /// \return U: the relaxed positions (#slots by 2), with the energies before and after and the Newton steps taken
 /// \throw InvalidInputError as minimize_symmetric_dirichlet().
 SymmetricDirichletResult relax_joint_start(const ConvexSubproblem& problem, const Eigen::MatrixXd& X0,
-                                           const JointStartRelaxationOptions& options = {});
+                                           const JointStartRelaxationOptions& options = {},
+                                           SparseCholesky* cholesky = nullptr);
 
 }  // namespace liftmap

@@ -123,6 +123,7 @@ struct SparseCholesky::Impl {
   cholmod_sparse* B = nullptr;  // lower triangle of P A P', the matrix CHOLMOD factorises
   std::vector<int> perm;        // row i of P A P' is row perm[i] of A
   std::vector<int> source;      // B's k-th value is A's source[k]-th value
+  std::vector<int> a_outer, a_inner;  // the pattern of A given to analyze()
   SolvePlan plan;               // how solve() splits the supernodes between two threads
   Eigen::Index n = 0, a_nonzeros = 0;
   bool analyzed = false;
@@ -451,6 +452,8 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
   m.analyzed = false;
   m.n = A.rows();
   m.a_nonzeros = A.nonZeros();
+  m.a_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
+  m.a_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
   // The fill-reducing ordering, postordered: METIS's nested dissection for large systems, else CHOLMOD's default
   // (AMD). CHOLMOD's default keeps AMD on the flattening systems, whose fill it finds acceptable, but nested
   // dissection needs fewer flops on these 2D-mesh graphs: camel-cow (46k unknowns) 1.33e8 against 1.54e8 per
@@ -539,6 +542,13 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   const SerialBlas serial;
   cholmod_factorize(m.B, m.L, &m.cm);
   return m.cm.status == CHOLMOD_OK && m.L->minor == m.L->n;
+}
+
+bool SparseCholesky::has_pattern_of(const Eigen::SparseMatrix<double>& A) const {
+  const Impl& m = *impl_;
+  return m.analyzed && A.isCompressed() && A.rows() == m.n && A.cols() == m.n && A.nonZeros() == m.a_nonzeros &&
+         std::equal(m.a_outer.begin(), m.a_outer.end(), A.outerIndexPtr()) &&
+         std::equal(m.a_inner.begin(), m.a_inner.end(), A.innerIndexPtr());
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {

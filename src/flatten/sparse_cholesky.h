@@ -33,6 +33,9 @@ class SparseCholesky {
   /// Solves `A X = B` for the last factorised `A`; `B` is n by k.
   [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   [[nodiscard]] bool analyzed() const;
+  /// Whether `A` has exactly the sparsity pattern analyze() was given (size and row indices of every column), so
+  /// that factorize(A) may reuse the analysis. False if not analysed.
+  [[nodiscard]] bool has_pattern_of(const Eigen::SparseMatrix<double>& A) const;
 
   /// How solve() shares its work between two threads: two groups of independent subtrees of the elimination
   /// tree, one per thread, and the top of the tree above them on one (fractions of the factor's stored values).

@@ -134,7 +134,7 @@ AssemblyStructure& assembly_structure(const Setup& s, SparseCholesky& cholesky, 
   for (size_t j = 0; same && j < s.faces.size(); ++j) same = cache.var[j] == s.faces[j].var;
   if (same) return cache;
   cache.pattern = make_pattern(s);
-  if (!cholesky.analyzed()) cholesky.analyze(cache.pattern.A);
+  if (!cholesky.has_pattern_of(cache.pattern.A)) cholesky.analyze(cache.pattern.A);
   cache.parts = partition_faces(s, cholesky);
   cache.var.resize(s.faces.size());
   for (size_t j = 0; j < s.faces.size(); ++j) cache.var[j] = s.faces[j].var;

@@ -299,7 +299,8 @@ void check_terms(const std::vector<SymmetricDirichletTerm>& terms, Eigen::Index 
 
 SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<SymmetricDirichletTerm>& terms,
                                                       const std::vector<char>& fixed, const Eigen::MatrixXd& X0,
-                                                      const SymmetricDirichletOptions& options) {
+                                                      const SymmetricDirichletOptions& options,
+                                                      SparseCholesky* shared_cholesky) {
   const auto ns = static_cast<Eigen::Index>(fixed.size());
   if (X0.rows() != ns || X0.cols() != 2) throw InvalidInputError("minimize_symmetric_dirichlet: sizes disagree");
   check_terms(terms, ns);
@@ -318,8 +319,9 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
   if (n == 0 || options.max_iterations <= 0) return res;
   const std::vector<std::array<int, 6>> var = face_unknowns(faces, dof);
   subproblem::Pattern pattern = subproblem::make_pattern(var, 2 * n);
-  SparseCholesky cholesky;
-  cholesky.analyze(pattern.A);
+  SparseCholesky own_cholesky;
+  SparseCholesky& cholesky = shared_cholesky != nullptr ? *shared_cholesky : own_cholesky;
+  if (!cholesky.has_pattern_of(pattern.A)) cholesky.analyze(pattern.A);
   std::vector<OwnSolve> own = own_solves(terms, faces, var, 2 * n);
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     const FaceDerivatives d = face_derivatives(faces, res.U);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "flatten/jacobian.h"
+#include "flatten/sparse_cholesky.h"
 
 namespace liftmap {
 
@@ -42,11 +43,14 @@ struct SymmetricDirichletTerm {
 /// Lowers E(X) = sum over the terms of weight * sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4) as the single-mesh
 /// overload below does, over the rows of X whose fixed flag is 0 (the others do not move).
 /// \param fixed #slots flags; \param X0 #slots by 2 positions with every face of every term positively oriented
+/// \param cholesky if given, the factorisation to use: its analysis is reused if it has this system's pattern, and
+///        left analysed for it on return (a later solver with the same pattern can then skip its own analysis)
 /// \throw InvalidInputError if sizes disagree, a corner has no slot, a weight is not positive or a face of X0 is not
 ///        positively oriented.
 SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<SymmetricDirichletTerm>& terms,
                                                       const std::vector<char>& fixed, const Eigen::MatrixXd& X0,
-                                                      const SymmetricDirichletOptions& options = {});
+                                                      const SymmetricDirichletOptions& options = {},
+                                                      SparseCholesky* cholesky = nullptr);
 
 /// Lowers E(U) = sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4), J_f the Jacobian of face f (JacobianOperator), by
 /// projected Newton (every face's 4 by 4 Hessian in J clamped to its positive semidefinite part, Teran et al.

@@ -46,6 +46,30 @@ TEST(flatten_sparse_cholesky, FactorisesAndLeavesOtherParallelRegionsTheirThread
   EXPECT_EQ(team, omp_get_max_threads());
 }
 
+// joint_flatten hands the relaxation's analysis to the convex subproblems only where the pattern is the same: a
+// pattern with as many entries elsewhere must not pass.
+TEST(flatten_sparse_cholesky, RecognisesOnlyItsOwnPattern) {
+  const int n = 50;
+  // The diagonal and the sub-diagonal, with entry (moved, moved - 1) moved to (moved, 0) unless moved is 0.
+  const auto matrix = [&](int moved) {
+    std::vector<Eigen::Triplet<double>> trip;
+    for (int i = 0; i < n; ++i) trip.emplace_back(i, i, 4.0);
+    for (int i = 1; i < n; ++i) trip.emplace_back(i, i == moved ? 0 : i - 1, -1.0);
+    Eigen::SparseMatrix<double> A(n, n);
+    A.setFromTriplets(trip.begin(), trip.end());
+    return A;
+  };
+  const Eigen::SparseMatrix<double> a = matrix(0), b = matrix(10);
+  ASSERT_EQ(a.nonZeros(), b.nonZeros());
+  SparseCholesky chol;
+  EXPECT_FALSE(chol.has_pattern_of(a)) << "not analysed yet";
+  chol.analyze(a);
+  EXPECT_TRUE(chol.has_pattern_of(a));
+  EXPECT_TRUE(chol.has_pattern_of(Eigen::SparseMatrix<double>(2.0 * a))) << "other values, same pattern";
+  EXPECT_FALSE(chol.has_pattern_of(b)) << "as many entries, one elsewhere";
+  EXPECT_FALSE(chol.has_pattern_of(Eigen::SparseMatrix<double>(a.topLeftCorner(n - 1, n - 1)))) << "smaller";
+}
+
 // A grid "mesh" with two coordinates per vertex, coupled like the Newton systems (random SPD 2 x 2 couplings on each
 // edge, a Laplacian-like sum plus a small shift on the diagonal): lower triangle plus garbage above it, which
 // SparseCholesky must ignore.
