@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "core/errors.h"
 
@@ -13,6 +15,23 @@ struct Corner {
   int lo, hi;   // undirected edge key
   int face, k;  // halfedge from corner k to corner k+1 of face
 };
+
+/// The corners in the order of (lo, hi, face, k): bucketed by lo (a counting sort, linear), then each bucket (about
+/// six corners) sorted. The same order as one comparison sort of the whole, in a fraction of its time.
+std::vector<Corner> sorted_by_edge(const std::vector<Corner>& corners, int n_vertices) {
+  std::vector<int> first(static_cast<size_t>(n_vertices) + 1, 0);
+  for (const Corner& c : corners) ++first[static_cast<size_t>(c.lo) + 1];
+  for (size_t v = 0; v < static_cast<size_t>(n_vertices); ++v) first[v + 1] += first[v];
+  std::vector<Corner> out(corners.size());
+  std::vector<int> next(first.begin(), first.end() - 1);
+  for (const Corner& c : corners) out[static_cast<size_t>(next[static_cast<size_t>(c.lo)]++)] = c;
+  for (size_t v = 0; v < static_cast<size_t>(n_vertices); ++v) {
+    std::sort(out.begin() + first[v], out.begin() + first[v + 1], [](const Corner& x, const Corner& y) {
+      return std::tie(x.hi, x.face, x.k) < std::tie(y.hi, y.face, y.k);
+    });
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -38,9 +57,7 @@ Mesh::Mesh(const Eigen::MatrixXi& F, int n_vertices) {
       corners.push_back({std::min(a, b), std::max(a, b), f, k});
     }
   }
-  std::sort(corners.begin(), corners.end(), [](const Corner& x, const Corner& y) {
-    return std::tie(x.lo, x.hi, x.face, x.k) < std::tie(y.lo, y.hi, y.face, y.k);
-  });
+  corners = sorted_by_edge(corners, n_vertices);
 
   // Halfedge of corner (f, k), assigned edge by edge so that twins are 2e, 2e+1.
   std::vector<int> corner_he(static_cast<size_t>(3 * nf), -1);
