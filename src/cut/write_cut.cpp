@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "io/output_file.h"
+#include "io/text_line.h"
 #include "io/write_mesh.h"
 
 namespace liftmap {
@@ -18,8 +19,9 @@ void write_side(const std::string& dir, const std::string& name, const CutSide& 
 
   const std::string graph = dir + "/cut_graph_" + name + ".obj";
   OutputFile f(graph);
+  TextLine line;
   for (Eigen::Index i = 0; i < s.V.rows(); ++i)
-    std::fprintf(f.get(), "v %.17g %.17g %.17g\n", s.V(i, 0), s.V(i, 1), s.V(i, 2));
+    line.add("v").add(s.V(i, 0)).add(s.V(i, 1)).add(s.V(i, 2)).write_to(f.get());
   for (const auto& path : s.paths) {
     std::fprintf(f.get(), "l");
     for (const int v : path) std::fprintf(f.get(), " %d", v + 1);

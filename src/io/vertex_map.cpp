@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "io/output_file.h"
+#include "io/text_line.h"
 
 namespace liftmap {
 
@@ -18,8 +19,9 @@ void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& 
   std::istringstream lines(header);
   for (std::string line; std::getline(lines, line);) std::fprintf(f.get(), "# %s\n", line.c_str());
   std::fprintf(f.get(), "# one line per source vertex: face b0 b1 b2 (0-based face of the target mesh)\n");
+  TextLine line;
   for (const SurfacePoint& p : images) {
-    std::fprintf(f.get(), "%d %.17g %.17g %.17g\n", p.face.idx, p.bary[0], p.bary[1], p.bary[2]);
+    line.add(p.face.idx).add(p.bary[0]).add(p.bary[1]).add(p.bary[2]).write_to(f.get());
   }
   f.close();
 }

@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "io/output_file.h"
+#include "io/text_line.h"
 
 namespace liftmap {
 
@@ -25,8 +26,9 @@ void write_mesh(const std::string& path, const Eigen::MatrixXd& V, const Eigen::
                  "property double z\nelement face %td\nproperty list uchar int vertex_indices\nend_header\n",
                  V.rows(), F.rows());
   }
-  for (Eigen::Index i = 0; i < V.rows(); ++i) std::fprintf(f.get(), "%.17g %.17g %.17g\n", V(i, 0), V(i, 1), V(i, 2));
-  for (Eigen::Index i = 0; i < F.rows(); ++i) std::fprintf(f.get(), "3 %d %d %d\n", F(i, 0), F(i, 1), F(i, 2));
+  TextLine line;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) line.add(V(i, 0)).add(V(i, 1)).add(V(i, 2)).write_to(f.get());
+  for (Eigen::Index i = 0; i < F.rows(); ++i) line.add(3).add(F(i, 0)).add(F(i, 1)).add(F(i, 2)).write_to(f.get());
   f.close();
 }
 
@@ -34,15 +36,16 @@ void write_obj_with_uv(const std::string& path, const Eigen::MatrixXd& V, const 
                        const Eigen::MatrixXd& UV, const Eigen::MatrixXi& FT, const std::string& mtl) {
   OutputFile f(path);
   if (!mtl.empty()) std::fprintf(f.get(), "mtllib %s\nusemtl material\n", mtl.c_str());
-  for (Eigen::Index i = 0; i < V.rows(); ++i) std::fprintf(f.get(), "v %.17g %.17g %.17g\n", V(i, 0), V(i, 1), V(i, 2));
-  for (Eigen::Index i = 0; i < UV.rows(); ++i) std::fprintf(f.get(), "vt %.17g %.17g\n", UV(i, 0), UV(i, 1));
+  TextLine line;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) line.add("v").add(V(i, 0)).add(V(i, 1)).add(V(i, 2)).write_to(f.get());
+  for (Eigen::Index i = 0; i < UV.rows(); ++i) line.add("vt").add(UV(i, 0)).add(UV(i, 1)).write_to(f.get());
   const bool with_uv = FT.rows() == F.rows() && UV.rows() > 0;
   for (Eigen::Index i = 0; i < F.rows(); ++i) {
     if (with_uv) {
       std::fprintf(f.get(), "f %d/%d %d/%d %d/%d\n", F(i, 0) + 1, FT(i, 0) + 1, F(i, 1) + 1, FT(i, 1) + 1, F(i, 2) + 1,
                    FT(i, 2) + 1);
     } else {
-      std::fprintf(f.get(), "f %d %d %d\n", F(i, 0) + 1, F(i, 1) + 1, F(i, 2) + 1);
+      line.add("f").add(F(i, 0) + 1).add(F(i, 1) + 1).add(F(i, 2) + 1).write_to(f.get());
     }
   }
   f.close();

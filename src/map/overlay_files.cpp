@@ -8,6 +8,7 @@
 #include "core/errors.h"
 #include "io/output_file.h"
 #include "io/read_mesh.h"
+#include "io/text_line.h"
 #include "io/vertex_map.h"
 #include "io/write_mesh.h"
 #include "map/transfer.h"
@@ -63,20 +64,21 @@ void write_overlay(const std::string& obj_path, const Overlay& overlay) {
                  "# liftmap overlay: per vertex of %s, its point on A and on B\n"
                  "# faceA a0 a1 a2 faceB b0 b1 b2 (0-based faces of the input meshes, barycentric coordinates)\n",
                  std::filesystem::path(obj_path).filename().string().c_str());
+    TextLine line;
     for (size_t i = 0; i < overlay.on_a.size(); ++i) {
       const SurfacePoint& a = overlay.on_a[i];
       const SurfacePoint& b = overlay.on_b[i];
-      std::fprintf(f.get(), "%d %.17g %.17g %.17g %d %.17g %.17g %.17g\n", a.face.idx, a.bary[0], a.bary[1], a.bary[2],
-                   b.face.idx, b.bary[0], b.bary[1], b.bary[2]);
+      line.add(a.face.idx).add(a.bary[0]).add(a.bary[1]).add(a.bary[2]);
+      line.add(b.face.idx).add(b.bary[0]).add(b.bary[1]).add(b.bary[2]).write_to(f.get());
     }
     f.close();
   }
   OutputFile f(faces_path);
   std::fprintf(f.get(), "# liftmap overlay: per triangle of %s, the input faces of A and of B containing it\n",
                std::filesystem::path(obj_path).filename().string().c_str());
-  for (Eigen::Index t = 0; t < overlay.F.rows(); ++t) {
-    std::fprintf(f.get(), "%d %d\n", overlay.face_a(t), overlay.face_b(t));
-  }
+  TextLine line;
+  for (Eigen::Index t = 0; t < overlay.F.rows(); ++t)
+    line.add(overlay.face_a(t)).add(overlay.face_b(t)).write_to(f.get());
   f.close();
 }
 

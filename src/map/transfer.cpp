@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "io/output_file.h"
+#include "io/text_line.h"
 #include "map/check_overlay.h"
 
 namespace liftmap {
@@ -114,9 +115,10 @@ Eigen::MatrixXd read_attributes(std::istream& in, const std::string& path, std::
 
 void write_attributes(const std::string& path, const Eigen::MatrixXd& X) {
   OutputFile f(path);
+  TextLine line;
   for (Eigen::Index i = 0; i < X.rows(); ++i) {
-    for (Eigen::Index j = 0; j < X.cols(); ++j) std::fprintf(f.get(), j == 0 ? "%.17g" : " %.17g", X(i, j));
-    std::fprintf(f.get(), "\n");
+    for (Eigen::Index j = 0; j < X.cols(); ++j) line.add(X(i, j));
+    line.write_to(f.get());
   }
   f.close();
 }

@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "cut/write_cut.h"
 #include "io/output_file.h"
+#include "io/text_line.h"
 #include "io/vertex_map.h"
 #include "io/write_mesh.h"
 #include "map/overlay_files.h"
@@ -27,11 +28,13 @@ nlohmann::json stats_json(const DistortionStats& s) {
 void write_barycentric_matrix(const std::string& path, const std::vector<SurfacePoint>& images,
                               const Eigen::MatrixXi& F_target) {
   OutputFile f(path);
+  TextLine line;
   for (size_t i = 0; i < images.size(); ++i) {
     const SurfacePoint& p = images[i];
     for (int k = 0; k < 3; ++k) {
       if (p.bary[static_cast<size_t>(k)] != 0.0) {
-        std::fprintf(f.get(), "%zu %d %.17g\n", i, F_target(p.face.idx, k), p.bary[static_cast<size_t>(k)]);
+        line.add(static_cast<long long>(i)).add(F_target(p.face.idx, k)).add(p.bary[static_cast<size_t>(k)]);
+        line.write_to(f.get());
       }
     }
   }
