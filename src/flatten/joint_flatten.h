@@ -137,13 +137,13 @@ struct JointFlattenResult {
   Eigen::MatrixXd Psi;  ///< #V(N) by 2 flattening of the second; Phi(boundary_m[i]) == Psi(boundary_n[i])
   std::vector<JointFlattenIteration> iterations;            ///< start, then one entry per outer iteration
   std::vector<Eigen::MatrixXd> Phi_iterates, Psi_iterates;  ///< every iterate if keep_iterates, else empty
-  std::string stop_reason;          ///< why the outer loop stopped before converging, if it did (empty otherwise)
-  bool converged = false;           ///< the relative tolerance was met before max_iterations
+  std::string stop_reason;  ///< why the outer loop stopped before converging, if it did (empty otherwise)
+  bool converged = false;   ///< the relative tolerance was met before max_iterations
   /// Newton steps of a last subproblem that ended at or above its start although certified to a gap below the
   /// outer tolerance, which proves convergence without a new iterate (its optimum is within that gap of the
   /// start); 0 if the loop converged on the energy's relative decrease, or did not converge.
   int last_subproblem_steps = 0;
-  double scale_m = 1, scale_n = 1;  ///< factors applied to the disks' coordinates internally
+  double scale_m = 1, scale_n = 1;                ///< factors applied to the disks' coordinates internally
   std::array<FlatteningStartCandidate, 2> start;  ///< each disk's start: drift, energy, smallest face area
   std::array<int, 2> start_steps{};               ///< Newton steps of each disk's start_optimization
   JointStartRelaxation joint_start;               ///< the joint relaxation of the start

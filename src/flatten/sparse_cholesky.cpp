@@ -119,12 +119,12 @@ struct SolvePlan {
 // and source indices are built once in analyze(), replaces both.
 struct SparseCholesky::Impl {
   cholmod_common cm{};
-  cholmod_factor* L = nullptr;  // factor of P A P' (natural ordering)
-  cholmod_sparse* B = nullptr;  // lower triangle of P A P', the matrix CHOLMOD factorises
-  std::vector<int> perm;        // row i of P A P' is row perm[i] of A
-  std::vector<int> source;      // B's k-th value is A's source[k]-th value
+  cholmod_factor* L = nullptr;        // factor of P A P' (natural ordering)
+  cholmod_sparse* B = nullptr;        // lower triangle of P A P', the matrix CHOLMOD factorises
+  std::vector<int> perm;              // row i of P A P' is row perm[i] of A
+  std::vector<int> source;            // B's k-th value is A's source[k]-th value
   std::vector<int> a_outer, a_inner;  // the pattern of A given to analyze()
-  SolvePlan plan;               // how solve() splits the supernodes between two threads
+  SolvePlan plan;                     // how solve() splits the supernodes between two threads
   Eigen::Index n = 0, a_nonzeros = 0;
   bool analyzed = false;
 

@@ -1,8 +1,8 @@
 #include "flatten/tutte.h"
 
+#include <omp.h>
 #include <Eigen/Geometry>
 #include <Eigen/SparseLU>
-#include <omp.h>
 
 #include <algorithm>
 #include <array>

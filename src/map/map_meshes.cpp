@@ -262,8 +262,9 @@ void flatten_stage(const MapOptions& options, const Progress& progress, MapResul
   r.seconds.flatten = seconds_since(t0);
   if (!r.flattening.stop_reason.empty()) progress("flatten", "stopped early: " + r.flattening.stop_reason);
   if (r.flattening.last_subproblem_steps > 0) {
-    progress("flatten", "converged: a last subproblem, certified to a gap below the tolerance, found no lower energy (" +
-                            std::to_string(r.flattening.last_subproblem_steps) + " Newton steps)");
+    progress("flatten",
+             "converged: a last subproblem, certified to a gap below the tolerance, found no lower energy (" +
+                 std::to_string(r.flattening.last_subproblem_steps) + " Newton steps)");
   }
   r.scale_a = r.flattening.scale_m;
   r.scale_b = r.flattening.scale_n;

@@ -111,7 +111,9 @@ TEST(flatten_start, DriftedEmbeddingsDoNotDependOnTheThreads) {
     const Eigen::MatrixXd alone = tutte_embedding(*d.mesh, d.V, d.boundary, B, sets[s]);
     EXPECT_TRUE(runs[0][s] == alone) << "set " << s << " on one thread";
     EXPECT_TRUE(runs[1][s] == alone) << "set " << s << " on two threads";
-    if (s > 0) EXPECT_FALSE(alone == runs[0][0]) << "the drift " << sets[s].drift << " changed nothing";
+    if (s > 0) {
+      EXPECT_FALSE(alone == runs[0][0]) << "the drift " << sets[s].drift << " changed nothing";
+    }
   }
 }
 

@@ -257,7 +257,8 @@ TEST(flatten_joint, RefinesOnlySubproblemsCoarserThanTheTolerance) {
   s.relative_gap = 8.4e-3;
   opt.refined_gap_fraction = 0;
   EXPECT_FALSE(can_refine(opt, s));
-  EXPECT_LT(JointFlattenOptions{}.refined_gap_fraction, 1) << "a second result above the start must certify convergence";
+  EXPECT_LT(JointFlattenOptions{}.refined_gap_fraction, 1)
+      << "a second result above the start must certify convergence";
 }
 
 /// Ghost faces at X are well-shaped starts: positively oriented, and with X as their rest shape their Jacobians
