@@ -334,6 +334,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       return primal_dual ? solve_convex_subproblem_primal_dual(sp, X, settings, cholesky, &assembly)
                          : solve_convex_subproblem(sp, X, settings, cholesky, &assembly);
     };
+    const double start_objective = subproblem_objective(sp, X);
     SubproblemResult br;
     int earlier_steps = 0;  // Newton steps of a first solve that the finer one below replaced
     try {
@@ -341,7 +342,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       // The start X is feasible with objective E(X) (the rotations are its polar ones). A result above that at a
       // gap coarser than the outer tolerance says only that X is within that gap of the optimum: the gap rule
       // expected more progress than is left. Solve again, finer than the tolerance (refined_gap_fraction).
-      if (br.objective > subproblem_objective(sp, X) && can_refine(options, solver)) {
+      if (br.objective > start_objective && can_refine(options, solver)) {
         earlier_steps = br.iterations;
         solver.relative_gap = options.refined_gap_fraction * options.relative_tolerance;
         solver.barrier.initial_gap = 0.5 * solver.relative_gap;
@@ -356,7 +357,6 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
       res.stop_reason = msg.str();
       break;
     }
-    const double start_objective = subproblem_objective(sp, X);
     if (br.objective > start_objective) {
       // Certified within a gap g below the tolerance, yet not below the start: the subproblem's optimum is within
       // g of E(X), so no outer iteration from X can lower the energy by the tolerance. X is converged.

@@ -73,8 +73,8 @@ struct JointFlattenOptions {
   /// gap, starting at half of it. Below 1, so that a second result above the start certifies convergence: the
   /// subproblem's optimum is then within less than the tolerance of the start's energy
   /// (JointFlattenResult::last_subproblem_steps). 0: off (the loop stops early there, stop_reason says why).
-  /// Half: on sphere-ellipsoid refined to 180k faces per mesh the second solve took 14 Newton steps (0.3: 21) to an
-  /// energy 9e-6 relative above 0.3's (docs/performance.md).
+  /// Half leaves the certificate a wide margin under the tolerance; finer costs Newton steps for no gain that the
+  /// tolerance can see (docs/performance.md).
   double refined_gap_fraction = 0.5;
   SubproblemSolver method = SubproblemSolver::kAuto;
   /// A disk whose plain Tutte start squeezed a face (FlatteningStart::squeezed) has its drifted start lowered in

@@ -125,7 +125,7 @@ struct SparseCholesky::Impl {
   std::vector<int> source;            // B's k-th value is A's source[k]-th value
   std::vector<int> a_outer, a_inner;  // the pattern of A given to analyze()
   SolvePlan plan;                     // how solve() splits the supernodes between two threads
-  Eigen::Index n = 0, a_nonzeros = 0;
+  Eigen::Index n = 0;
   bool analyzed = false;
 
   Impl() {
@@ -451,7 +451,6 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
   if (m.B != nullptr) cholmod_free_sparse(&m.B, &m.cm);
   m.analyzed = false;
   m.n = A.rows();
-  m.a_nonzeros = A.nonZeros();
   m.a_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
   m.a_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
   // The fill-reducing ordering, postordered: METIS's nested dissection for large systems, else CHOLMOD's default
@@ -488,7 +487,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
     int col, row, src;
   };
   std::vector<Entry> entries;
-  entries.reserve(static_cast<size_t>(m.a_nonzeros));
+  entries.reserve(m.a_inner.size());
   for (int c = 0; c < A.cols(); ++c) {
     for (int k = A.outerIndexPtr()[c]; k < A.outerIndexPtr()[c + 1]; ++k) {
       const int r = A.innerIndexPtr()[k];
@@ -531,7 +530,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!impl_->analyzed) analyze(A);
   Impl& m = *impl_;
-  if (A.rows() != m.n || A.nonZeros() != m.a_nonzeros) {
+  if (A.rows() != m.n || static_cast<size_t>(A.nonZeros()) != m.a_inner.size()) {
     throw PipelineError("sparse Cholesky: the matrix does not have the analysed pattern");
   }
   auto* bx = static_cast<double*>(m.B->x);
@@ -546,7 +545,8 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
 
 bool SparseCholesky::has_pattern_of(const Eigen::SparseMatrix<double>& A) const {
   const Impl& m = *impl_;
-  return m.analyzed && A.isCompressed() && A.rows() == m.n && A.cols() == m.n && A.nonZeros() == m.a_nonzeros &&
+  return m.analyzed && A.isCompressed() && A.rows() == m.n && A.cols() == m.n &&
+         static_cast<size_t>(A.nonZeros()) == m.a_inner.size() &&
          std::equal(m.a_outer.begin(), m.a_outer.end(), A.outerIndexPtr()) &&
          std::equal(m.a_inner.begin(), m.a_inner.end(), A.innerIndexPtr());
 }

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <charconv>
-#include <cmath>
 
 namespace liftmap {
 
@@ -12,10 +11,6 @@ void TextLine::separate() {
 
 TextLine& TextLine::add(double x) {
   separate();
-  if (std::isnan(x)) {
-    text_ += std::signbit(x) ? "-nan" : "nan";
-    return *this;
-  }
   std::array<char, 32> buffer{};  // the shortest round-trip form of a double takes at most 24 characters
   const auto end = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x).ptr;
   text_.append(buffer.data(), end);
