@@ -87,7 +87,8 @@ struct Token {
 /// The face point of barycentric coordinates b in `face`, a vertex point if only one of them is positive; a point
 /// nearer to a side than kNearSide moved onto it, with a warning naming the line if that moves it farther than
 /// rounding (kSamePoint).
-Token face_token(const std::string& path, int line, const LandmarkMesh& mesh, int face, std::array<double, 3> b,
+/// `where` names the landmark in the warning: "file:line" or "name: row i".
+Token face_token(const std::string& where, const LandmarkMesh& mesh, int face, std::array<double, 3> b,
                  std::vector<std::string>& warnings) {
   b = clamp_barycentric(b);
   std::array<double, 3> snapped = b;
@@ -99,8 +100,8 @@ Token face_token(const std::string& path, int line, const LandmarkMesh& mesh, in
                         mesh.position(SurfacePoint::in_face(FaceId(face), snapped)))
                            .norm();
   if (moved > kSamePoint * mesh.diagonal()) {
-    warnings.push_back(path + ":" + std::to_string(line) + ": the landmark on mesh " + mesh.name + " is within " +
-                       number(kNearSide) + " of its face's height from a side of face " + std::to_string(face) +
+    warnings.push_back(where + ": the landmark on mesh " + mesh.name + " is within " + number(kNearSide) +
+                       " of its face's height from a side of face " + std::to_string(face) +
                        ": moved onto the side, by " + number(moved));
   }
   b = snapped;
@@ -134,6 +135,22 @@ bool parse_triple(const std::string& path, int line, const std::string& text, st
   return true;
 }
 
+/// Why b are not barycentric coordinates of a point of `face` (each finite, in [0, 1] and summing to 1, all within
+/// kBarycentricTolerance), or "" if they are.
+std::string barycentric_problem(const std::array<double, 3>& b, long long face) {
+  double sum = 0;
+  for (const double x : b) {
+    if (!std::isfinite(x)) return "barycentric coordinate " + number(x) + " is not finite";
+    if (x < -kBarycentricTolerance) {
+      return "barycentric coordinate " + number(x) + " is negative: the point is outside face " + std::to_string(face);
+    }
+    if (x > 1 + kBarycentricTolerance) return "barycentric coordinate " + number(x) + " is greater than 1";
+    sum += x;
+  }
+  if (std::abs(sum - 1) > kBarycentricTolerance) return "barycentric coordinates sum to " + number(sum) + ", not 1";
+  return {};
+}
+
 Token parse_face_point(const std::string& path, int line, const std::string& token, const LandmarkMesh& mesh,
                        std::vector<std::string>& warnings) {
   const std::string form = "'f<face>:<b0>,<b1>,<b2>'";
@@ -153,19 +170,8 @@ Token parse_face_point(const std::string& path, int line, const std::string& tok
   if (!parse_triple(path, line, token.substr(colon + 1), b)) {
     fail(path, line, "'" + token + "' is not a face point " + form + " (three barycentric coordinates)");
   }
-  double sum = 0;
-  for (const double x : b) {
-    if (!std::isfinite(x)) fail(path, line, "barycentric coordinate " + number(x) + " is not finite");
-    if (x < -kBarycentricTolerance) {
-      fail(path, line, "barycentric coordinate " + number(x) + " is negative: the point is outside face " + face_text);
-    }
-    if (x > 1 + kBarycentricTolerance) fail(path, line, "barycentric coordinate " + number(x) + " is greater than 1");
-    sum += x;
-  }
-  if (std::abs(sum - 1) > kBarycentricTolerance) {
-    fail(path, line, "barycentric coordinates sum to " + number(sum) + ", not 1");
-  }
-  return face_token(path, line, mesh, static_cast<int>(face), b, warnings);
+  if (const std::string problem = barycentric_problem(b, face); !problem.empty()) fail(path, line, problem);
+  return face_token(path + ":" + std::to_string(line), mesh, static_cast<int>(face), b, warnings);
 }
 
 Token parse_3d_point(const std::string& path, int line, const std::string& token, LandmarkMesh& mesh,
@@ -183,7 +189,7 @@ Token parse_3d_point(const std::string& path, int line, const std::string& token
                        " from mesh " + mesh.name + " (" + number(100 * near.distance / mesh.diagonal()) +
                        "% of its bounding box diagonal); its nearest surface point is the landmark");
   }
-  return face_token(path, line, mesh, near.face, near.bary, warnings);
+  return face_token(path + ":" + std::to_string(line), mesh, near.face, near.bary, warnings);
 }
 
 /// One token of a pair line: a vertex index, a face point or a 3D point.
@@ -357,6 +363,41 @@ Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, con
     Token ta, tb;
     ta.vertex = pairs[i][0];
     tb.vertex = pairs[i][1];
+    collector.add(ta, tb, static_cast<int>(i));
+  }
+  return collector.finish();
+}
+
+Landmarks make_landmarks(const std::vector<SurfacePoint>& a, const std::vector<SurfacePoint>& b,
+                         const std::string& name, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                         const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
+  if (a.size() != b.size()) {
+    throw InvalidInputError(name + ": " + std::to_string(a.size()) + " landmarks on mesh A but " +
+                            std::to_string(b.size()) + " on mesh B");
+  }
+  const LandmarkMesh mesh_a('A', VA, FA), mesh_b('B', VB, FB);
+  LandmarkCollector collector(name, "row", mesh_a, mesh_b);
+  const auto token = [&](const SurfacePoint& p, const LandmarkMesh& mesh, size_t row) {
+    const std::string where = name + ": row " + std::to_string(row);
+    Token t;
+    if (p.kind == SurfacePoint::Kind::kVertex) {
+      t.vertex = p.vertex.idx;
+      return t;
+    }
+    if (p.kind != SurfacePoint::Kind::kFace) {
+      throw InvalidInputError(where + ": the landmark on mesh " + mesh.name + " is not a vertex or a face point");
+    }
+    if (p.face.idx < 0 || p.face.idx >= mesh.n_faces()) {
+      throw InvalidInputError(where + ": face " + std::to_string(p.face.idx) + " is out of range for mesh " +
+                              mesh.name + " (" + std::to_string(mesh.n_faces()) + " faces)");
+    }
+    if (const std::string problem = barycentric_problem(p.bary, p.face.idx); !problem.empty()) {
+      throw InvalidInputError(where + ": " + problem + " (mesh " + mesh.name + ")");
+    }
+    return face_token(where, mesh, p.face.idx, p.bary, collector.warnings());
+  };
+  for (size_t i = 0; i < a.size(); ++i) {
+    const Token ta = token(a[i], mesh_a, i), tb = token(b[i], mesh_b, i);
     collector.add(ta, tb, static_cast<int>(i));
   }
   return collector.finish();

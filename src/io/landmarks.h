@@ -63,6 +63,19 @@ Landmarks read_landmarks(std::istream& in, const std::string& name, const Eigen:
 Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, const std::string& name, int n_vertices_a,
                          int n_vertices_b);
 
+/// Landmarks given as surface points (e.g. face indices and barycentric coordinates from Python arrays), checked
+/// and snapped as read_landmarks (with the meshes) checks and snaps a file's face points: a face point's
+/// barycentric coordinates are in the order of its face's row of F, each in [0, 1] and summing to 1 (within 1e-9);
+/// a coordinate below 1e-3 is set to 0 (a warning names the row), and a point with a coordinate of 1 becomes a
+/// vertex point.
+/// \param a, b k points each, a[i] on mesh A corresponding to b[i] on mesh B: vertex or face points
+/// \param name how messages name the landmarks; each message names the offending row (0-based)
+/// \throw InvalidInputError naming the row for an edge point, a vertex or face out of range, coordinates that are
+///        not barycentric, two landmarks at one point of one side; or if a and b differ in length, or k < 2.
+Landmarks make_landmarks(const std::vector<SurfacePoint>& a, const std::vector<SurfacePoint>& b,
+                         const std::string& name, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                         const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
+
 /// The token of a landmark in the format above: `123` for a vertex point, `f<face>:<b0>,<b1>,<b2>` for a face point
 /// (each coordinate the shortest text that reads back as the same double).
 /// \pre p is a vertex or face point

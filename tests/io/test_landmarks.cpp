@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 #include "common/test_meshes.h"
 #include "core/errors.h"
@@ -149,6 +151,86 @@ TEST(Landmarks, RejectsMalformedSurfacePointsWithTheLine) {
   } catch (const InvalidInputError& e) {
     EXPECT_NE(std::string(e.what()).find("lm.txt:2: 'f0:0.2,0.3,0.5' is a surface point"), std::string::npos)
         << e.what();
+  }
+}
+
+// Surface points given as arrays (Python's dict of faces and barycentric coordinates) pass the checks and the snapping
+// of a file's face points, with messages that name the row.
+TEST(Landmarks, SurfacePointsFromArraysAreCheckedAsAFilesFacePoints) {
+  const TriangleMesh oct = read_mesh(testing::test_data("good/octahedron.off"));
+  std::istringstream in(
+      "4 f0:0.6,0.2,0.2\n"
+      "f2:0,1,0 f3:2e-10,0.5,0.5\n"
+      "f7:0.0005,0.4995,0.5 0.2,0.3,0.5\n");
+  const Landmarks file = read_landmarks(in, "lm.txt", oct.V, oct.F, oct.V, oct.F);
+  // The same landmarks as face points (vertex 4 as a corner of face 0 (0 2 4), vertex 3 as corner 1 of face 2).
+  const std::vector<SurfacePoint> a{SurfacePoint::in_face(FaceId(0), {0, 0, 1}),
+                                    SurfacePoint::in_face(FaceId(2), {0, 1, 0}),
+                                    SurfacePoint::in_face(FaceId(7), {0.0005, 0.4995, 0.5})};
+  const std::vector<SurfacePoint> b{SurfacePoint::in_face(FaceId(0), {0.6, 0.2, 0.2}),
+                                    SurfacePoint::in_face(FaceId(3), {2e-10, 0.5, 0.5}),
+                                    SurfacePoint::in_face(FaceId(0), {0.2, 0.3, 0.5})};
+  const Landmarks arrays = make_landmarks(a, b, "landmarks", oct.V, oct.F, oct.V, oct.F);
+  ASSERT_EQ(arrays.a.size(), 3U);
+  for (size_t i = 0; i < 3; ++i) {
+    for (const auto& [x, y] : {std::pair{arrays.a[i], file.a[i]}, std::pair{arrays.b[i], file.b[i]}}) {
+      ASSERT_EQ(x.kind, y.kind) << "row " << i;
+      if (x.kind == SurfacePoint::Kind::kVertex) {
+        EXPECT_EQ(x.vertex.idx, y.vertex.idx) << "row " << i;
+      } else {
+        EXPECT_EQ(x.face.idx, y.face.idx) << "row " << i;
+        for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(x.bary[k], y.bary[k], 1e-15) << "row " << i;
+      }
+    }
+  }
+  EXPECT_EQ(arrays.a[0].vertex.idx, 4);
+  EXPECT_EQ(arrays.a[1].vertex.idx, 3);
+  EXPECT_EQ(arrays.b[1].bary[0], 0.0) << "2e-10 of the height from a side: moved onto it";
+  ASSERT_EQ(arrays.warnings.size(), 2U);
+  EXPECT_NE(arrays.warnings[0].find("landmarks: row 1: the landmark on mesh B is within 0.001"), std::string::npos)
+      << arrays.warnings[0];
+  EXPECT_NE(arrays.warnings[1].find("landmarks: row 2: the landmark on mesh A is within 0.001"), std::string::npos)
+      << arrays.warnings[1];
+  // Vertex points pass as they are.
+  const Landmarks vertices =
+      make_landmarks({SurfacePoint::at_vertex(VertexId(0)), SurfacePoint::at_vertex(VertexId(5))},
+                     {SurfacePoint::at_vertex(VertexId(1)), SurfacePoint::at_vertex(VertexId(2))}, "landmarks", oct.V,
+                     oct.F, oct.V, oct.F);
+  EXPECT_EQ(vertices.b[1].vertex.idx, 2);
+}
+
+TEST(Landmarks, RejectsBadSurfacePointsFromArraysWithTheRow) {
+  const TriangleMesh oct = read_mesh(testing::test_data("good/octahedron.off"));
+  const SurfacePoint good = SurfacePoint::in_face(FaceId(0), {0.2, 0.3, 0.5});
+  const SurfacePoint other = SurfacePoint::in_face(FaceId(5), {0.2, 0.3, 0.5});
+  const std::pair<SurfacePoint, const char*> cases[] = {
+      {SurfacePoint::in_face(FaceId(8), {0.2, 0.3, 0.5}),
+       "landmarks: row 1: face 8 is out of range for mesh B (8 faces)"},
+      {SurfacePoint::in_face(FaceId(-1), {0.2, 0.3, 0.5}), "landmarks: row 1: face -1 is out of range for mesh B"},
+      {SurfacePoint::in_face(FaceId(1), {0.5, 0.5, 0.5}),
+       "landmarks: row 1: barycentric coordinates sum to 1.5, not 1"},
+      {SurfacePoint::in_face(FaceId(1), {-0.5, 1, 0.5}), "landmarks: row 1: barycentric coordinate -0.5 is negative"},
+      {SurfacePoint::in_face(FaceId(1), {std::nan(""), 0.5, 0.5}), "landmarks: row 1: barycentric coordinate nan is"},
+      {SurfacePoint::on_edge(EdgeId(0), 0.5),
+       "landmarks: row 1: the landmark on mesh B is not a vertex or a face point"},
+      {SurfacePoint::at_vertex(VertexId(6)), "landmarks: row 1: vertex 6 is out of range for mesh B (6 vertices)"},
+      {good, "landmarks: row 1: the landmark f0:0.2,0.3,0.5 of mesh B is at the same point as the one of row 0"},
+  };
+  for (const auto& [second, message] : cases) {
+    try {
+      make_landmarks({SurfacePoint::at_vertex(VertexId(0)), SurfacePoint::at_vertex(VertexId(1))}, {good, second},
+                     "landmarks", oct.V, oct.F, oct.V, oct.F);
+      ADD_FAILURE() << message << ": accepted";
+    } catch (const InvalidInputError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(make_landmarks({good, other}, {good}, "landmarks", oct.V, oct.F, oct.V, oct.F), InvalidInputError);
+  try {
+    make_landmarks({good}, {other}, "landmarks", oct.V, oct.F, oct.V, oct.F);
+    ADD_FAILURE() << "one pair accepted";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("1 landmark pair(s); at least 2 are needed"), std::string::npos) << e.what();
   }
 }
 
