@@ -1,5 +1,6 @@
 #include "arrays.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -93,18 +94,94 @@ Landmarks landmarks_from(const py::handle& array, int n_vertices_a, int n_vertic
   return make_landmarks(pairs, "landmarks", n_vertices_a, n_vertices_b);
 }
 
-std::vector<SurfacePoint> face_points_from(const py::handle& faces, const py::handle& barycentric, int n_faces) {
-  const py::array f = as_array(faces, "faces");
+void require_face_corners(const Eigen::MatrixXi& F, Eigen::Index n_vertices, const std::string& name) {
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (F(f, k) < 0 || F(f, k) >= n_vertices) {
+        throw InvalidInputError(name + ": face " + std::to_string(f) + " has vertex index " + std::to_string(F(f, k)) +
+                                ", out of range (" + std::to_string(n_vertices) + " vertices)");
+      }
+    }
+  }
+}
+
+Landmarks landmarks_from(const py::handle& landmarks, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                         const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
+  if (!py::isinstance<py::dict>(landmarks)) {
+    return landmarks_from(landmarks, static_cast<int>(VA.rows()), static_cast<int>(VB.rows()));
+  }
+  const auto d = py::reinterpret_borrow<py::dict>(landmarks);
+  for (const auto& item : d) {
+    const auto key = py::str(item.first).cast<std::string>();
+    if (key != "faces_A" && key != "barycentric_A" && key != "faces_B" && key != "barycentric_B") {
+      throw InvalidInputError("landmarks: unknown key '" + key +
+                              "' (expected faces_A, barycentric_A, faces_B, barycentric_B)");
+    }
+  }
+  // Face points are placed on the faces before check_mesh has run (in map_meshes): their corners must exist.
+  require_face_corners(FA, VA.rows(), "FA");
+  require_face_corners(FB, VB.rows(), "FB");
+  const auto points = [&](const std::string& side, int n_faces) {
+    const std::string faces = "faces_" + side, barycentric = "barycentric_" + side;
+    if (!d.contains(faces) || !d.contains(barycentric)) {
+      throw InvalidInputError("landmarks: the dict has no '" + (d.contains(faces) ? barycentric : faces) +
+                              "' (expected faces_A, barycentric_A, faces_B, barycentric_B)");
+    }
+    return face_points_from(d[faces.c_str()], d[barycentric.c_str()], n_faces, "landmarks['" + faces + "']",
+                            "landmarks['" + barycentric + "']");
+  };
+  return make_landmarks(points("A", static_cast<int>(FA.rows())), points("B", static_cast<int>(FB.rows())), "landmarks",
+                        VA, FA, VB, FB);
+}
+
+py::dict landmarks_dict(const Landmarks& landmarks, const Eigen::MatrixXi& FA, const Eigen::MatrixXi& FB) {
+  const auto as_face_points = [](std::vector<SurfacePoint> points, const Eigen::MatrixXi& F) {
+    for (SurfacePoint& p : points) {
+      if (p.kind != SurfacePoint::Kind::kVertex) continue;
+      for (Eigen::Index f = 0; f < F.rows(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+          if (F(f, k) != p.vertex.idx) continue;
+          std::array<double, 3> b{0, 0, 0};
+          b[static_cast<size_t>(k)] = 1;
+          p = SurfacePoint::in_face(FaceId(static_cast<int>(f)), b);
+          break;
+        }
+        if (p.kind == SurfacePoint::Kind::kFace) break;
+      }
+      if (p.kind != SurfacePoint::Kind::kFace) {
+        throw InvalidInputError("landmark vertex " + std::to_string(p.vertex.idx) + " is on no face");
+      }
+    }
+    return points;
+  };
+  const std::vector<SurfacePoint> a = as_face_points(landmarks.a, FA), b = as_face_points(landmarks.b, FB);
+  py::dict d;
+  d["faces_A"] = faces_of(a);
+  d["barycentric_A"] = barycentric_of(a);
+  d["faces_B"] = faces_of(b);
+  d["barycentric_B"] = barycentric_of(b);
+  return d;
+}
+
+void warn_landmarks(const Landmarks& landmarks) {
+  for (const std::string& w : landmarks.warnings) {
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 2) != 0) throw py::error_already_set();
+  }
+}
+
+std::vector<SurfacePoint> face_points_from(const py::handle& faces, const py::handle& barycentric, int n_faces,
+                                           const std::string& faces_name, const std::string& barycentric_name) {
+  const py::array f = as_array(faces, faces_name);
   if (!is_int(f) || f.ndim() != 1) {
-    throw InvalidInputError("faces: expected a 1-D int32 or int64 array, got " + dtype_of(f) + " of shape " +
+    throw InvalidInputError(faces_name + ": expected a 1-D int32 or int64 array, got " + dtype_of(f) + " of shape " +
                             shape_of(f));
   }
-  const py::array b = as_array(barycentric, "barycentric");
-  if (!is_float(b)) throw InvalidInputError("barycentric: expected float64 or float32, got " + dtype_of(b));
-  require_columns(b, "barycentric", "(n, 3)", 3);
+  const py::array b = as_array(barycentric, barycentric_name);
+  if (!is_float(b)) throw InvalidInputError(barycentric_name + ": expected float64 or float32, got " + dtype_of(b));
+  require_columns(b, barycentric_name, "(n, 3)", 3);
   if (b.shape(0) != f.shape(0)) {
-    throw InvalidInputError("barycentric: " + std::to_string(b.shape(0)) + " rows, but faces has " +
-                            std::to_string(f.shape(0)));
+    throw InvalidInputError(barycentric_name + ": " + std::to_string(b.shape(0)) + " rows, but " + faces_name +
+                            " has " + std::to_string(f.shape(0)));
   }
   const auto face_array = py::array_t<std::int64_t, py::array::forcecast>::ensure(f);
   const auto face = face_array.unchecked<1>();
@@ -114,12 +191,12 @@ std::vector<SurfacePoint> face_points_from(const py::handle& faces, const py::ha
   for (Eigen::Index i = 0; i < B.rows(); ++i) {
     const std::string row = "row " + std::to_string(i) + ": ";
     if (face(i) < 0 || face(i) >= n_faces) {
-      throw InvalidInputError("faces: " + row + "face " + std::to_string(face(i)) + " is out of range (" +
+      throw InvalidInputError(faces_name + ": " + row + "face " + std::to_string(face(i)) + " is out of range (" +
                               std::to_string(n_faces) + " faces)");
     }
     if (!B.row(i).allFinite() || B.row(i).minCoeff() < -1e-12 || std::abs(B.row(i).sum() - 1) > 1e-9) {
-      throw InvalidInputError("barycentric: " + row + "(" + figure(B(i, 0), 17) + ", " + figure(B(i, 1), 17) + ", " +
-                              figure(B(i, 2), 17) + ") are not barycentric coordinates (>= 0, summing to 1)");
+      throw InvalidInputError(barycentric_name + ": " + row + "(" + figure(B(i, 0), 17) + ", " + figure(B(i, 1), 17) +
+                              ", " + figure(B(i, 2), 17) + ") are not barycentric coordinates (>= 0, summing to 1)");
     }
     points.push_back(SurfacePoint::in_face(FaceId(static_cast<int>(face(i))), {B(i, 0), B(i, 1), B(i, 2)}));
   }

@@ -29,9 +29,31 @@ Landmarks landmarks_from(const pybind11::handle& array, int n_vertices_a, int n_
 
 /// Face points from n face indices (int32 or int64) and an n by 3 array of barycentric coordinates: each face in
 /// 0..n_faces-1, each coordinate finite and >= -1e-12, each row summing to 1 within 1e-9.
-/// \throw InvalidInputError naming the row.
+/// \throw InvalidInputError naming the array (faces_name, barycentric_name) and the row.
 std::vector<SurfacePoint> face_points_from(const pybind11::handle& faces, const pybind11::handle& barycentric,
-                                           int n_faces);
+                                           int n_faces, const std::string& faces_name = "faces",
+                                           const std::string& barycentric_name = "barycentric");
+
+/// Checks that every vertex index of F is in 0..n_vertices-1 (check_mesh checks it too, but surface points are placed
+/// on the faces before it runs).
+/// \throw InvalidInputError naming `name`, the face and the index.
+void require_face_corners(const Eigen::MatrixXi& F, Eigen::Index n_vertices, const std::string& name);
+
+/// Landmarks of the meshes (VA, FA) and (VB, FB) from Python: a k by 2 integer array of vertex pairs
+/// (landmarks_from above), or a dict of face points {"faces_A": (k,) int, "barycentric_A": (k, 3) float, "faces_B",
+/// "barycentric_B"}, barycentric coordinates in the order of the face's row of F, checked and snapped as a landmark
+/// file's face points are (make_landmarks with the meshes; its warnings are in the result).
+/// \throw InvalidInputError naming the key or array and the row.
+Landmarks landmarks_from(const pybind11::handle& landmarks, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
+                         const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
+
+/// Landmarks as the dict landmarks_from takes, every landmark a face point (a vertex as a corner of its first face
+/// in F, barycentric coordinate 1 there).
+pybind11::dict landmarks_dict(const Landmarks& landmarks, const Eigen::MatrixXi& FA, const Eigen::MatrixXi& FB);
+
+/// Each of the landmarks' warnings as a Python UserWarning.
+/// \throw pybind11::error_already_set if the warnings filter turns a warning into an exception.
+void warn_landmarks(const Landmarks& landmarks);
 
 /// Any numeric array of 1 or 2 dimensions as an n by k matrix (a 1-D array is n by 1), converted to float64.
 /// \throw InvalidInputError naming `name` otherwise.

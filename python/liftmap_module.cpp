@@ -6,6 +6,7 @@
 
 #include <climits>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "arrays.h"
 #include "batch_functions.h"
@@ -58,6 +59,20 @@ py::array_t<int> read_landmark_pairs(const std::string& path, std::optional<int>
   return to_numpy(L);
 }
 
+py::dict read_surface_landmark_points(const std::string& path, const py::handle& VA, const py::handle& FA,
+                                      const py::handle& VB, const py::handle& FB) {
+  const Eigen::MatrixXd va = vertices_from(VA, "VA"), vb = vertices_from(VB, "VB");
+  const Eigen::MatrixXi fa = faces_from(FA, "FA"), fb = faces_from(FB, "FB");
+  require_face_corners(fa, va.rows(), "FA");
+  require_face_corners(fb, vb.rows(), "FB");
+  const Landmarks lm = [&] {
+    const py::gil_scoped_release unlocked;
+    return read_landmarks(path, va, fa, vb, fb);
+  }();
+  warn_landmarks(lm);
+  return landmarks_dict(lm, fa, fb);
+}
+
 py::object check_arrays(const py::handle& V, const py::handle& F, const std::string& name) {
   const Eigen::MatrixXd Vm = vertices_from(V, "V");
   const Eigen::MatrixXi Fm = faces_from(F, "F");
@@ -99,7 +114,11 @@ corresponding landmarks (Aigerman, Poranne, Lipman 2014): the pipeline of `liftm
 Arrays: vertices float64 or float32, faces int32 or int64, C or Fortran order.
   VA: (#VA, 3) positions of A          FA: (#FA, 3) vertex indices of A, 0-based, counter-clockwise from outside
   VB: (#VB, 3) positions of B          FB: (#FB, 3) vertex indices of B
-  landmarks: (k, 2) integer array, k >= 2: row i is a vertex of A and its partner on B.
+  landmarks: (k, 2) integer array, k >= 2: row i is a vertex of A and its partner on B; or landmarks anywhere on
+    the surfaces, a dict of face points {"faces_A": (k,) int, "barycentric_A": (k, 3) float, "faces_B",
+    "barycentric_B"} (barycentric coordinates in the order of the face's row of F, as read_surface_landmarks
+    returns): checked as a landmark file's face points; one nearer to a side than 1e-3 of its face's height is moved
+    onto it with a UserWarning.
 Options (the CLI's, README "Command line"):
   p: 2 or "inf" (also 2.0, float("inf")): norm of the energy (10a). Default 2.
   h: "eq3" (sqrt(Sigma^2 + sigma^-2)) or "eq2" (max): per-face distortion. Default "eq3".
@@ -126,7 +145,8 @@ The GIL is released while the pipeline runs: maps in several Python threads run 
 Raises:
   InvalidInputError: an array of the wrong shape or dtype, a mesh that cannot be mapped (the message names the
     element: NaN coordinate, face index out of range, non-manifold edge, genus, ...), invalid landmarks (names
-    the row: index out of range, vertex used twice, fewer than 2 pairs).
+    the row: index out of range, vertex used twice, face or barycentric coordinates out of range, two landmarks at
+    one point, fewer than 2 pairs).
   UsageError: an option out of its range (names the option).
   PipelineError: a stage failed, or the verification failed (unless accept_unverified).)";
 
@@ -228,7 +248,17 @@ Raises ReadError naming the file and line or element.)");
   m.def("read_landmarks", &read_landmark_pairs, "path"_a, "n_vertices_a"_a = py::none(), "n_vertices_b"_a = py::none(),
         R"(read_landmarks(path, n_vertices_a=None, n_vertices_b=None) -> (k, 2) int32
 
-Reads a landmark file ('iA iB' per line, '#' comments); indices checked against the vertex counts if given.
+Reads a landmark file of vertex pairs ('iA iB' per line, '#' comments); indices checked against the vertex counts
+if given. A file with face points or 3D points: read_surface_landmarks.
+Raises ReadError if the file cannot be read, InvalidInputError naming the file and line otherwise.)");
+  m.def("read_surface_landmarks", &read_surface_landmark_points, "path"_a, "VA"_a, "FA"_a, "VB"_a, "FB"_a,
+        R"(read_surface_landmarks(path, VA, FA, VB, FB) -> dict
+
+Reads a landmark file with every token form of the CLI (README, "Landmarks"): vertex indices, face points
+'f<face>:<b0>,<b1>,<b2>' and 3D points 'x,y,z' (located at the nearest surface point), checked against the meshes.
+Returns the dict that map() takes as landmarks: "faces_A" (k,) int32, "barycentric_A" (k, 3) float64 in the order of
+the face's row of FA, "faces_B", "barycentric_B"; a vertex landmark is a corner of its first face, coordinate 1.
+A point moved onto a side of its face, or a 3D point far from the surface, gives a UserWarning naming the line.
 Raises ReadError if the file cannot be read, InvalidInputError naming the file and line otherwise.)");
   m.def("check", &check_arrays, "V"_a, "F"_a, "name"_a = "mesh", R"(check(V, F, name="mesh") -> dict
 

@@ -6,6 +6,7 @@
 #include "arrays.h"
 #include "check/check_mesh.h"
 #include "core/errors.h"
+#include "map/write_map.h"
 
 namespace py = pybind11;
 
@@ -66,10 +67,14 @@ Map compute_map(const py::handle& VA, const py::handle& FA, const py::handle& VB
   state->given_b = {vertices_from(VB, "VB"), faces_from(FB, "FB")};
   MapInputs& in = state->inputs;
   in = {keywords.name_a, keywords.name_b, state->given_a, state->given_b, {}, false, false};
-  in.landmarks = landmarks_from(landmarks, static_cast<int>(in.a.V.rows()), static_cast<int>(in.b.V.rows()));
+  in.landmarks = landmarks_from(landmarks, in.a.V, in.a.F, in.b.V, in.b.F);
+  warn_landmarks(in.landmarks);
   if (keywords.arguments.fix_orientation) {
     in.reversed_a = fix_orientation(in.a, keywords.name_a);
     in.reversed_b = fix_orientation(in.b, keywords.name_b);
+    // Face points in the corner order of the reversed faces (the swap is its own inverse).
+    in.landmarks.a = images_in_given_order(std::move(in.landmarks.a), in.reversed_a);
+    in.landmarks.b = images_in_given_order(std::move(in.landmarks.b), in.reversed_b);
   }
   {
     const py::gil_scoped_release unlocked;

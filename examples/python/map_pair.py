@@ -33,7 +33,7 @@ def write_coloured_off(path, V, F, rgb):
 def main(path_a, path_b, path_landmarks, out):
     VA, FA = liftmap.read_mesh(path_a)
     VB, FB = liftmap.read_mesh(path_b)
-    landmarks = liftmap.read_landmarks(path_landmarks, len(VA), len(VB))
+    landmarks = liftmap.read_surface_landmarks(path_landmarks, VA, FA, VB, FB)  # every token form of the CLI
     m = liftmap.map(VA, FA, VB, FB, landmarks, name_a=path_a, name_b=path_b,
                     progress=lambda stage, message: print(f"{stage:8} {message}", file=sys.stderr))
     f = m.report["distortion"]["f"]

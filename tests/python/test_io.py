@@ -32,6 +32,7 @@ def test_help_documents_every_argument():
                  "max_iterations", "start_relaxation", "solver", "tree", "samples", "threads", "fix_orientation", "progress",
                  "InvalidInputError", "PipelineError"]:
         assert word in doc, word
-    for f in (liftmap.read_mesh, liftmap.read_landmarks, liftmap.check, liftmap.Map.evaluate, liftmap.Map.transfer,
+    for f in (liftmap.read_mesh, liftmap.read_landmarks, liftmap.read_surface_landmarks, liftmap.check,
+              liftmap.Map.evaluate, liftmap.Map.transfer,
               liftmap.Map.save):
         assert f.__doc__ and "Raises" in f.__doc__
