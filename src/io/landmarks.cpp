@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -12,6 +11,7 @@
 
 #include "core/errors.h"
 #include "core/nearest_surface_point.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 
 namespace liftmap {
@@ -323,13 +323,7 @@ Landmarks read_pairs(std::istream& in, const std::string& path, LandmarkMesh& a,
   return collector.finish();
 }
 
-std::ifstream open_landmarks(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": is a directory, not a landmark file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open landmark file");
-  return in;
-}
+std::ifstream open_landmarks(const std::string& path) { return open_input_file(path, "landmark file"); }
 
 }  // namespace
 

@@ -2,19 +2,16 @@
 
 #include <cctype>
 #include <charconv>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/input_file.h"
 
 namespace liftmap {
 
 std::string read_file(const std::string& path, const std::string& what) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": is a directory, not a " + what);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open file");
+  std::ifstream in = open_input_file(path, what);
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw IoError(path + ": read error");

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "io/text_line.h"
 
@@ -27,8 +28,7 @@ void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& 
 }
 
 std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_faces) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open file");
+  std::ifstream in = open_input_file(path, "map file");
   return read_vertex_map(in, path, n_target_faces);
 }
 

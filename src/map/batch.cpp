@@ -24,6 +24,7 @@
 
 #include "core/errors.h"
 #include "core/seconds_since.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 
 namespace liftmap {
@@ -280,8 +281,7 @@ void make_folder(const fs::path& dir) {
 }  // namespace
 
 std::vector<BatchPair> read_manifest(const std::string& path, const MapArguments& defaults) {
-  std::ifstream in(path);
-  if (!in) throw IoError(path + ": cannot open the manifest: " + std::strerror(errno));
+  std::ifstream in = open_input_file(path, "manifest");
   const fs::path folder = fs::path(path).parent_path();
   std::vector<std::string> header;
   std::map<std::string, size_t> column;

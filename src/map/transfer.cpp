@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "io/text_line.h"
 #include "map/check_overlay.h"
@@ -72,8 +73,7 @@ std::vector<int> folded_faces(const Eigen::MatrixXi& F_source, const Eigen::Matr
 }
 
 Eigen::MatrixXd read_attributes(const std::string& path, std::vector<int>* line_of_row) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open file");
+  std::ifstream in = open_input_file(path, "attribute file");
   return read_attributes(in, path, line_of_row);
 }
 

@@ -137,7 +137,7 @@ bad_manifest "duplicate name" 2 ".*bad.csv:3: the name 'a-b' is already the name
   "$(printf 'mesh_a,mesh_b,landmarks\na.off,b.off,l.txt\na.off,b.off,m.txt')"
 bad_manifest "name with a slash" 2 ".*bad.csv:2: 'a/x' is a name with a '/'" \
   "$(printf 'name,mesh_a,mesh_b,landmarks\na/x,a.off,b.off,l.txt')"
-expect "missing manifest" 3 "^liftmap: .*missing.csv: cannot open the manifest" -- batch "$tmp/missing.csv" -o "$never"
+expect "missing manifest" 3 "^liftmap: .*missing.csv: cannot open manifest" -- batch "$tmp/missing.csv" -o "$never"
 expect "bad shard" 2 "^liftmap: --shard: '2/2' is not i/n" -- batch "$manifest" -o "$never" --shard 2/2
 expect "bad jobs" 2 "^liftmap: .*--jobs" -- batch "$manifest" -o "$never" --jobs 0
 expect "bad option" 2 "^liftmap: --max-iterations: value 10001 not in range 0 to 10000" -- \

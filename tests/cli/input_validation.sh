@@ -61,4 +61,14 @@ accepted() {  # NAME KIND VALUE
 accepted "translated by 1e4" translate 1e4
 accepted "scaled by 1e29" scale 1e29
 accepted "scaled by 1e-29" scale 1e-29
+
+# A device is no input (a link to /dev/zero was read until memory ran out); a pipe is (process substitution).
+ln -s /dev/zero "$tmp/zero.off"
+expect "device as a mesh" 3 "^liftmap: .*zero.off: is a device or socket, not a mesh file" -- check "$tmp/zero.off"
+expect "device as landmarks" 3 "^liftmap: /dev/zero: is a device or socket, not a landmark file" -- \
+  map "$meshes/larger_sphere.off" "$meshes/ellipsoid.off" -l /dev/zero -o "$tmp/device"
+require "device as landmarks: no output folder" test ! -e "$tmp/device"
+expect "landmarks from a pipe" 0 ".*" -- map "$meshes/larger_sphere.off" "$meshes/ellipsoid.off" \
+  -l <(cat "$lm") -o "$tmp/pipe" --quiet --max-iterations 0
+require "landmarks from a pipe: verification passed" grep -q '"passed": true' "$tmp/pipe/report.json"
 finish

@@ -121,5 +121,5 @@ def test_bad_options_raise(manifest, tmp_path, keywords, error, message):
 
 
 def test_missing_manifest_raises_read_error(tmp_path):
-    with pytest.raises(liftmap.ReadError, match="missing.csv: cannot open the manifest"):
+    with pytest.raises(liftmap.ReadError, match="missing.csv: cannot open manifest"):
         liftmap.batch(tmp_path / "missing.csv", tmp_path / "out")
