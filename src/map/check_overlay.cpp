@@ -10,6 +10,21 @@ namespace {
 
 Eigen::Vector3d corner(const Eigen::MatrixXd& V, int i) { return V.row(i).transpose(); }
 
+/// A face's two edge vectors from its first corner: points of the face are measured from that corner, so that a
+/// mesh far from the origin keeps the digits of its faces' size (a face's area and its triangles' use the same
+/// vectors, and their difference is rounding of the face's own size).
+struct FaceFrame {
+  Eigen::Vector3d e1, e2;
+
+  FaceFrame(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eigen::Index f)
+      : e1(corner(V, F(f, 1)) - corner(V, F(f, 0))), e2(corner(V, F(f, 2)) - corner(V, F(f, 0))) {}
+
+  /// The point of barycentric coordinates w, relative to the first corner.
+  [[nodiscard]] Eigen::Vector3d at(const std::array<double, 3>& w) const { return w[1] * e1 + w[2] * e2; }
+  /// The face's area vector (normal times area).
+  [[nodiscard]] Eigen::Vector3d area_vector() const { return 0.5 * e1.cross(e2); }
+};
+
 /// Area vector (n * area) of a triangle.
 Eigen::Vector3d area_vector(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   return 0.5 * (b - a).cross(c - a);
@@ -25,18 +40,13 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
     Eigen::VectorXd covered = Eigen::VectorXd::Zero(F.rows());
     Eigen::VectorXi count = Eigen::VectorXi::Zero(F.rows());
     Eigen::VectorXd face_area(F.rows());
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      face_area(f) = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2))).norm();
-    }
+    for (Eigen::Index f = 0; f < F.rows(); ++f) face_area(f) = FaceFrame(V, F, f).area_vector().norm();
     for (Eigen::Index t = 0; t < overlay.F.rows(); ++t) {
       const int f = side == Side::kA ? overlay.face_a(t) : overlay.face_b(t);
       const auto w = corner_barycentrics(overlay, F, side, static_cast<int>(t));
-      std::array<Eigen::Vector3d, 3> p;
-      for (size_t k = 0; k < 3; ++k) {
-        p[k] = w[k][0] * corner(V, F(f, 0)) + w[k][1] * corner(V, F(f, 1)) + w[k][2] * corner(V, F(f, 2));
-      }
-      const Eigen::Vector3d n = area_vector(p[0], p[1], p[2]);
-      const Eigen::Vector3d nf = area_vector(corner(V, F(f, 0)), corner(V, F(f, 1)), corner(V, F(f, 2)));
+      const FaceFrame frame(V, F, f);
+      const Eigen::Vector3d n = area_vector(frame.at(w[0]), frame.at(w[1]), frame.at(w[2]));
+      const Eigen::Vector3d nf = frame.area_vector();
       const double signed_area = n.dot(nf.normalized());
       // Cells far thinner than rounding (two maps' edges that nearly coincide) have no reliable sign.
       if (!(signed_area > -OverlayCheck::kRoundingArea * nf.norm())) ++flipped;

@@ -7,7 +7,8 @@
 
 namespace liftmap {
 
-/// Checks of an overlay against its input meshes (issue 32's invariants), all relative.
+/// Checks of an overlay against its input meshes (issue 32's invariants), all relative; each face's areas are measured
+/// from its first corner, so that they keep their digits far from the origin.
 struct OverlayCheck {
   double area_error_a = 0;       ///< |sum of triangle areas on A - area of A| / area of A
   double area_error_b = 0;       ///< the same on B
