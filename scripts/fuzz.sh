@@ -3,7 +3,7 @@
 #   scripts/fuzz.sh [BUILD]   BUILD: the fuzz build folder (default build-fuzz)
 #   FUZZ_SECONDS  seconds per target (default 600)
 #   FUZZ_JOBS     targets run at the same time (default 1; at most 2 on a shared machine)
-#   FUZZ_TARGETS  which targets (default: off obj ply stl landmarks vertex_map)
+#   FUZZ_TARGETS  which targets (default: off obj ply stl landmarks surface_landmarks vertex_map obj_uv)
 # Seeds come from tests/data (and PLY/STL versions of its octahedron); the corpus each run grows is kept in
 # BUILD/fuzz-corpus/<target>, findings (crash-*, leak-*, timeout-*) go to BUILD/fuzz-findings/<target>/ and
 # fail the run: keep each as a regression input in tests/data/fuzz-regressions/<target>/ once fixed.
@@ -13,7 +13,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build-fuzz}"
 seconds="${FUZZ_SECONDS:-600}"
 jobs="${FUZZ_JOBS:-1}"
-targets="${FUZZ_TARGETS:-off obj ply stl landmarks vertex_map}"
+targets="${FUZZ_TARGETS:-off obj ply stl landmarks surface_landmarks vertex_map obj_uv}"
 data="$root/tests/data"
 
 seed() {  # TARGET: fills BUILD/fuzz-seeds/TARGET
@@ -23,7 +23,19 @@ seed() {  # TARGET: fills BUILD/fuzz-seeds/TARGET
   case "$t" in
     off | obj | ply | stl) find "$data/good" "$data/bad" -name "*.$t" -exec cp {} "$dir" \; ;;
     landmarks) cp "$data/good/landmarks.txt" "$data"/bad/lm_*.txt "$dir" ;;
+    surface_landmarks)
+      cp "$data/good/landmarks.txt" "$dir"
+      printf '4 f0:0.6,0.2,0.2\nf1:0.25,0.25,0.5 0.2,0.3,0.5  # face and 3D point\nf7:0.0005,0.4995,0.5 2,2,2\n' \
+        >"$dir/surface.txt"
+      ;;
     vertex_map) printf '# map\n0 1 0 0\n1 0.25 0.25 0.5\n1999 0 0 1  # last face\n' >"$dir/map.txt" ;;
+    obj_uv)
+      printf 'mtllib m.mtl\nv 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\n' \
+        >"$dir/octahedron_uv.obj"
+      printf 'f 1/1 3/2 5/3\nf 3/1 2/2 5/3\nf 2/1 4/2 5/3\nf 4/1 1/2 5/3\nf 3/1 1/2 6/3\nf -4/1 -5/2 -1/3\n' \
+        >>"$dir/octahedron_uv.obj"
+      printf 'f 4/-3/1 2/-2/2 6/-1/3\nf 1//1 4/1 6/2\n' >"$dir/octahedron_uv_bad.obj"
+      ;;
   esac
   case "$t" in
     ply)

@@ -103,7 +103,11 @@ ObjContent read_obj_content(const std::string& path, const std::string& text) {
 TexturedMesh read_obj_with_uv(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(path + ": no such file");
-  const std::string text = read_file(path, "mesh file");
+  return read_obj_with_uv_text(read_file(path, "mesh file"), path);
+}
+
+TexturedMesh read_obj_with_uv_text(const std::string& text, const std::string& path) {
+  std::error_code ec;
   const ObjContent c = read_obj_content(path, text);
   TexturedMesh m;
   m.V.resize(static_cast<Eigen::Index>(c.points.size()), 3);

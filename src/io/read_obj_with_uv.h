@@ -26,4 +26,8 @@ struct TexturedMesh {
 ///        a malformed material file (its line).
 TexturedMesh read_obj_with_uv(const std::string& path);
 
+/// read_obj_with_uv of an OBJ's content `text`; `path` names it in messages and is the folder `mtllib` is resolved
+/// from. \throw IoError as read_obj_with_uv
+TexturedMesh read_obj_with_uv_text(const std::string& text, const std::string& path);
+
 }  // namespace liftmap
