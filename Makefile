@@ -40,6 +40,7 @@ test: meshes build build-asan
 	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow
 
 test-slow: meshes build
+	cmake --build $(BUILD) --target bench_scaling
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L slow
 
 # The solver, flattening and whole-map tests (ctest label `solver`) once per OpenBLAS kernel the CPU supports.
