@@ -72,9 +72,7 @@ Map compute_map(const py::handle& VA, const py::handle& FA, const py::handle& VB
   if (keywords.arguments.fix_orientation) {
     in.reversed_a = fix_orientation(in.a, keywords.name_a);
     in.reversed_b = fix_orientation(in.b, keywords.name_b);
-    // Face points in the corner order of the reversed faces (the swap is its own inverse).
-    in.landmarks.a = images_in_given_order(std::move(in.landmarks.a), in.reversed_a);
-    in.landmarks.b = images_in_given_order(std::move(in.landmarks.b), in.reversed_b);
+    in.landmarks = landmarks_across_reversal(std::move(in.landmarks), in.reversed_a, in.reversed_b);
   }
   {
     const py::gil_scoped_release unlocked;

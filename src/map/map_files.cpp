@@ -41,9 +41,7 @@ MapInputs read_map_inputs(const std::string& path_a, const std::string& path_b, 
   if (fix) {
     in.reversed_a = fix_orientation(in.a, path_a, warning);
     in.reversed_b = fix_orientation(in.b, path_b, warning);
-    // Face points in the corner order of the reversed faces (the swap is its own inverse).
-    in.landmarks.a = images_in_given_order(std::move(in.landmarks.a), in.reversed_a);
-    in.landmarks.b = images_in_given_order(std::move(in.landmarks.b), in.reversed_b);
+    in.landmarks = landmarks_across_reversal(std::move(in.landmarks), in.reversed_a, in.reversed_b);
   }
   prepare_output_folder(out_dir, map_output_names(), {path_a, path_b, landmarks_path});
   return in;

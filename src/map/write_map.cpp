@@ -174,10 +174,15 @@ std::vector<SurfacePoint> images_in_given_order(std::vector<SurfacePoint> images
   return images;
 }
 
+Landmarks landmarks_across_reversal(Landmarks landmarks, bool reversed_a, bool reversed_b) {
+  landmarks.a = images_in_given_order(std::move(landmarks.a), reversed_a);
+  landmarks.b = images_in_given_order(std::move(landmarks.b), reversed_b);
+  return landmarks;
+}
+
 nlohmann::json map_report(const MapResult& map, const MapInputs& inputs, const MapOptions& options) {
-  Landmarks given = inputs.landmarks;  // the landmarks' tokens as in the file
-  given.a = images_in_given_order(std::move(given.a), inputs.reversed_a);
-  given.b = images_in_given_order(std::move(given.b), inputs.reversed_b);
+  // The landmarks' tokens as in the file.
+  const Landmarks given = landmarks_across_reversal(inputs.landmarks, inputs.reversed_a, inputs.reversed_b);
   nlohmann::json j = map_report(map, inputs.name_a, inputs.a, inputs.name_b, inputs.b, given, options);
   j["input"]["A"]["faces_reversed"] = inputs.reversed_a;
   j["input"]["B"]["faces_reversed"] = inputs.reversed_b;

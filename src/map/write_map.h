@@ -39,6 +39,10 @@ struct MapInputs {
 /// is its own inverse: it also takes face points as given (landmarks) to the order of the reversed faces.
 std::vector<SurfacePoint> images_in_given_order(std::vector<SurfacePoint> images, bool target_reversed);
 
+/// The landmarks with images_in_given_order applied to each side whose faces were reversed: from the tokens as
+/// given to the corner order of the reversed faces, and back (the swap is its own inverse). Warnings are kept.
+Landmarks landmarks_across_reversal(Landmarks landmarks, bool reversed_a, bool reversed_b);
+
 /// The report of a map as JSON (report.json), with "faces_reversed" per input.
 nlohmann::json map_report(const MapResult& map, const MapInputs& inputs, const MapOptions& options);
 
