@@ -127,8 +127,9 @@ Landmarks landmarks_from(const py::handle& landmarks, const Eigen::MatrixXd& VA,
       throw InvalidInputError("landmarks: the dict has no '" + (d.contains(faces) ? barycentric : faces) +
                               "' (expected faces_A, barycentric_A, faces_B, barycentric_B)");
     }
+    // The coordinates are checked by make_landmarks, as a landmark file's are: one rule for both.
     return face_points_from(d[faces.c_str()], d[barycentric.c_str()], n_faces, "landmarks['" + faces + "']",
-                            "landmarks['" + barycentric + "']");
+                            "landmarks['" + barycentric + "']", CoordinateCheck::kLeaveToCaller);
   };
   return make_landmarks(points("A", static_cast<int>(FA.rows())), points("B", static_cast<int>(FB.rows())), "landmarks",
                         VA, FA, VB, FB);
@@ -170,7 +171,8 @@ void warn_landmarks(const Landmarks& landmarks) {
 }
 
 std::vector<SurfacePoint> face_points_from(const py::handle& faces, const py::handle& barycentric, int n_faces,
-                                           const std::string& faces_name, const std::string& barycentric_name) {
+                                           const std::string& faces_name, const std::string& barycentric_name,
+                                           CoordinateCheck check) {
   const py::array f = as_array(faces, faces_name);
   if (!is_int(f) || f.ndim() != 1) {
     throw InvalidInputError(faces_name + ": expected a 1-D int32 or int64 array, got " + dtype_of(f) + " of shape " +
@@ -194,7 +196,9 @@ std::vector<SurfacePoint> face_points_from(const py::handle& faces, const py::ha
       throw InvalidInputError(faces_name + ": " + row + "face " + std::to_string(face(i)) + " is out of range (" +
                               std::to_string(n_faces) + " faces)");
     }
-    if (!B.row(i).allFinite() || B.row(i).minCoeff() < -1e-12 || std::abs(B.row(i).sum() - 1) > 1e-9) {
+    const bool barycentric_row =
+        B.row(i).allFinite() && B.row(i).minCoeff() >= -1e-12 && std::abs(B.row(i).sum() - 1) <= 1e-9;
+    if (check == CoordinateCheck::kStrict && !barycentric_row) {
       throw InvalidInputError(barycentric_name + ": " + row + "(" + figure(B(i, 0), 17) + ", " + figure(B(i, 1), 17) +
                               ", " + figure(B(i, 2), 17) + ") are not barycentric coordinates (>= 0, summing to 1)");
     }

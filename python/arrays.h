@@ -27,12 +27,19 @@ Eigen::MatrixXi faces_from(const pybind11::handle& array, const std::string& nam
 /// \throw InvalidInputError naming "landmarks" and the row.
 Landmarks landmarks_from(const pybind11::handle& array, int n_vertices_a, int n_vertices_b);
 
+/// How face_points_from checks barycentric coordinates.
+enum class CoordinateCheck {
+  kStrict,        ///< each coordinate finite and >= -1e-12, each row summing to 1 within 1e-9
+  kLeaveToCaller  ///< none: the caller checks them (make_landmarks, with a landmark file's tolerance)
+};
+
 /// Face points from n face indices (int32 or int64) and an n by 3 array of barycentric coordinates: each face in
-/// 0..n_faces-1, each coordinate finite and >= -1e-12, each row summing to 1 within 1e-9.
+/// 0..n_faces-1, the coordinates checked as `check` says.
 /// \throw InvalidInputError naming the array (faces_name, barycentric_name) and the row.
 std::vector<SurfacePoint> face_points_from(const pybind11::handle& faces, const pybind11::handle& barycentric,
                                            int n_faces, const std::string& faces_name = "faces",
-                                           const std::string& barycentric_name = "barycentric");
+                                           const std::string& barycentric_name = "barycentric",
+                                           CoordinateCheck check = CoordinateCheck::kStrict);
 
 /// Checks that every vertex index of F is in 0..n_vertices-1 (check_mesh checks it too, but surface points are placed
 /// on the faces before it runs).

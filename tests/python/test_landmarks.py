@@ -94,7 +94,12 @@ def test_face_point_near_a_side_is_moved_with_a_warning(pair):
     (lambda d: d.pop("faces_B"), r"landmarks: the dict has no 'faces_B'"),
     (lambda d: d.update(faces_C=d["faces_A"]), r"landmarks: unknown key 'faces_C'"),
     (lambda d: d["faces_B"].__setitem__(0, 10 ** 6), r"landmarks\['faces_B'\]: row 0: face 1000000 is out of range"),
-    (lambda d: d["barycentric_A"].__setitem__(3, [0.5, 0.5, 0.5]), r"landmarks\['barycentric_A'\]: row 3: "),
+    (lambda d: d["barycentric_A"].__setitem__(3, [0.5, 0.5, 0.5]),
+     r"landmarks: row 3: barycentric coordinates sum to 1.5, not 1 \(mesh A\)"),
+    (lambda d: d["barycentric_B"].__setitem__(1, [0.7, 0.3 + 1e-6, -1e-6]),
+     r"landmarks: row 1: barycentric coordinate -1e-06 is negative: the point is outside face \d+ \(mesh B\)"),
+    (lambda d: d["barycentric_B"].__setitem__(4, [np.nan, 0.5, 0.5]),
+     r"landmarks: row 4: barycentric coordinate nan is not finite \(mesh B\)"),
     (lambda d: d.update(faces_A=d["faces_A"][:5], barycentric_A=d["barycentric_A"][:5]),
      r"landmarks: 5 landmarks on mesh A but 6 on mesh B"),
     (lambda d: d.update(faces_A=d["faces_A"].astype(float)), r"landmarks\['faces_A'\]: expected a 1-D int32 or int64"),
@@ -107,6 +112,28 @@ def test_bad_face_point_landmarks_name_the_row(pair, change, message):
     change(d)
     with pytest.raises(liftmap.InvalidInputError, match=message):
         liftmap.map(VA, FA, VB, FB, d, threads=THREADS)
+
+
+def test_face_points_take_a_landmark_files_tolerance(pair, tmp_path):
+    """A coordinate of -5e-10 (within a landmark file's 1e-9) is accepted from a dict as from a file, and gives the
+    same map: one rule for both."""
+    VA, FA, VB, FB, _ = pair
+    d = face_landmarks(pair)
+    d["barycentric_A"][0] = [0.6, 0.4 + 5e-10, -5e-10]
+    lines = []
+    for i in range(len(d["faces_A"])):
+        tokens = [f"f{d['faces_' + s][i]}:" + ",".join(repr(float(x)) for x in d["barycentric_" + s][i]) for s in "AB"]
+        lines.append(" ".join(tokens))
+    path = tmp_path / "landmarks.txt"
+    path.write_text("\n".join(lines) + "\n")
+    from_file = liftmap.read_surface_landmarks(str(path), VA, FA, VB, FB)
+    with warnings.catch_warnings(record=True):
+        warnings.simplefilter("always")
+        a = liftmap.map(VA, FA, VB, FB, d, threads=THREADS, max_iterations=0)
+        b = liftmap.map(VA, FA, VB, FB, from_file, threads=THREADS, max_iterations=0)
+    assert a.verified and b.verified
+    np.testing.assert_array_equal(a.a_to_b.faces, b.a_to_b.faces)
+    np.testing.assert_array_equal(a.a_to_b.barycentric, b.a_to_b.barycentric)
 
 
 def test_face_points_on_a_mesh_with_bad_faces_are_an_error_not_a_crash(pair):
