@@ -530,9 +530,9 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!impl_->analyzed) analyze(A);
   Impl& m = *impl_;
-  if (A.rows() != m.n || static_cast<size_t>(A.nonZeros()) != m.a_inner.size()) {
-    throw PipelineError("sparse Cholesky: the matrix does not have the analysed pattern");
-  }
+  // The whole pattern, not only its size: a matrix of the same size and entry count but other entries would be
+  // factorised silently wrong. 0.44 ms per factorisation at 735k entries (fandisk-bunny), under 1% of one.
+  if (!has_pattern_of(A)) throw PipelineError("sparse Cholesky: the matrix does not have the analysed pattern");
   auto* bx = static_cast<double*>(m.B->x);
   const double* ax = A.valuePtr();
   const auto nb = static_cast<Eigen::Index>(m.source.size());

@@ -27,8 +27,9 @@ class SparseCholesky {
   /// Fill-reducing ordering and symbolic factorisation of the pattern of `A` (n by n, lower triangle used).
   /// \throw PipelineError if CHOLMOD fails.
   void analyze(const Eigen::SparseMatrix<double>& A);
-  /// Numeric factorisation of `A`, which must have the pattern given to `analyze`.
+  /// Numeric factorisation of `A`, which must have the pattern given to `analyze` (has_pattern_of).
   /// \return false if `A` is not (numerically) positive definite; the caller decides what to do.
+  /// \throw PipelineError if `A` does not have the analysed pattern.
   [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
   /// Solves `A X = B` for the last factorised `A`; `B` is n by k.
   [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;

@@ -47,7 +47,7 @@ TEST(flatten_sparse_cholesky, FactorisesAndLeavesOtherParallelRegionsTheirThread
 }
 
 // joint_flatten hands the relaxation's analysis to the convex subproblems only where the pattern is the same: a
-// pattern with as many entries elsewhere must not pass.
+// pattern with as many entries elsewhere must not pass, nor be factorised.
 TEST(flatten_sparse_cholesky, RecognisesOnlyItsOwnPattern) {
   const int n = 50;
   // The diagonal and the sub-diagonal, with entry (moved, moved - 1) moved to (moved, 0) unless moved is 0.
@@ -68,6 +68,10 @@ TEST(flatten_sparse_cholesky, RecognisesOnlyItsOwnPattern) {
   EXPECT_TRUE(chol.has_pattern_of(Eigen::SparseMatrix<double>(2.0 * a))) << "other values, same pattern";
   EXPECT_FALSE(chol.has_pattern_of(b)) << "as many entries, one elsewhere";
   EXPECT_FALSE(chol.has_pattern_of(Eigen::SparseMatrix<double>(a.topLeftCorner(n - 1, n - 1)))) << "smaller";
+  // factorize() refuses a pattern it has not analysed, even of the same size and entry count, instead of
+  // factorising it wrongly.
+  EXPECT_TRUE(chol.factorize(Eigen::SparseMatrix<double>(2.0 * a)));
+  EXPECT_THROW((void)chol.factorize(b), PipelineError);
 }
 
 // A grid "mesh" with two coordinates per vertex, coupled like the Newton systems (random SPD 2 x 2 couplings on each
