@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <vector>
 
 #include "core/errors.h"
 #include "io/output_file.h"
+#include "io/line_reader.h"
 #include "io/read_mesh.h"
 #include "io/text_line.h"
 #include "io/vertex_map.h"
@@ -85,10 +87,23 @@ void write_overlay(const std::string& obj_path, const Overlay& overlay) {
 Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
                      const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
   const auto [points_path, faces_path] = overlay_table_paths(obj_path);
-  const TriangleMesh mesh = read_mesh(obj_path);
+  std::error_code ec;
+  if (!std::filesystem::exists(obj_path, ec)) throw IoError(obj_path + ": no such file");
+  OverlayTexts texts;
+  texts.obj = read_file(obj_path, "overlay file");
+  texts.points = read_file(points_path, "overlay table");
+  texts.faces = read_file(faces_path, "overlay table");
+  return read_overlay_texts(texts, obj_path, VA, FA, VB, FB);
+}
+
+Overlay read_overlay_texts(const OverlayTexts& texts, const std::string& obj_path, const Eigen::MatrixXd& VA,
+                           const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
+  const auto [points_path, faces_path] = overlay_table_paths(obj_path);
+  const TriangleMesh mesh = read_mesh_data(texts.obj, obj_path);
   std::vector<int> point_lines, face_lines;
-  const Eigen::MatrixXd P = read_attributes(points_path, &point_lines);
-  const Eigen::MatrixXd T = read_attributes(faces_path, &face_lines);
+  std::istringstream points(texts.points), faces(texts.faces);
+  const Eigen::MatrixXd P = read_attributes(points, points_path, &point_lines);
+  const Eigen::MatrixXd T = read_attributes(faces, faces_path, &face_lines);
   if (P.cols() != 8 || P.rows() != mesh.V.rows()) {
     throw IoError(points_path + ": expected " + std::to_string(mesh.V.rows()) +
                   " rows of 8 numbers (one per vertex of " + obj_path + "), found " + std::to_string(P.rows()) +

@@ -31,4 +31,16 @@ void write_overlay(const std::string& obj_path, const Overlay& overlay);
 Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
                      const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
 
+/// The contents of an overlay's three files.
+struct OverlayTexts {
+  std::string obj;     ///< overlay.obj
+  std::string points;  ///< overlay_points.txt
+  std::string faces;   ///< overlay_faces.txt
+};
+
+/// read_overlay of files already read (tests, fuzzing): the same checks and messages, which name `obj_path` and
+/// the tables' paths overlay_table_paths(obj_path).
+Overlay read_overlay_texts(const OverlayTexts& texts, const std::string& obj_path, const Eigen::MatrixXd& VA,
+                           const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
+
 }  // namespace liftmap
