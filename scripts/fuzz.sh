@@ -3,17 +3,18 @@
 #   scripts/fuzz.sh [BUILD]   BUILD: the fuzz build folder (default build-fuzz)
 #   FUZZ_SECONDS  seconds per target (default 600)
 #   FUZZ_JOBS     targets run at the same time (default 1; at most 2 on a shared machine)
-#   FUZZ_TARGETS  which targets (default: off obj ply stl landmarks surface_landmarks vertex_map obj_uv)
-# Seeds come from tests/data (and PLY/STL versions of its octahedron); the corpus each run grows is kept in
-# BUILD/fuzz-corpus/<target>, findings (crash-*, leak-*, timeout-*) go to BUILD/fuzz-findings/<target>/ and
-# fail the run: keep each as a regression input in tests/data/fuzz-regressions/<target>/ once fixed.
+#   FUZZ_TARGETS  which targets (default: off obj ply stl landmarks surface_landmarks vertex_map obj_uv overlay)
+# Seeds come from tests/data (tests/data/fuzz-seeds/<target> and PLY/STL versions of its octahedron); the corpus
+# each run grows is kept in BUILD/fuzz-corpus/<target>, findings (crash-*, leak-*, timeout-*) go to
+# BUILD/fuzz-findings/<target>/ and fail the run: keep each as a regression input in
+# tests/data/fuzz-regressions/<target>/ once fixed.
 # BUILD/fuzz-summary.txt lists the executions and seconds per target.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build-fuzz}"
 seconds="${FUZZ_SECONDS:-600}"
 jobs="${FUZZ_JOBS:-1}"
-targets="${FUZZ_TARGETS:-off obj ply stl landmarks surface_landmarks vertex_map obj_uv}"
+targets="${FUZZ_TARGETS:-off obj ply stl landmarks surface_landmarks vertex_map obj_uv overlay}"
 data="$root/tests/data"
 
 seed() {  # TARGET: fills BUILD/fuzz-seeds/TARGET
@@ -47,6 +48,8 @@ seed() {  # TARGET: fills BUILD/fuzz-seeds/TARGET
       "$root/tests/cli/make_variant.py" stl_ascii_nan "$data/good/octahedron.off" "$dir/octahedron_ascii.stl"
       ;;
   esac
+  # Seeds kept as files (overlay: its three files NUL-separated, fuzz/overlay_as_fuzzed.h), and earlier findings.
+  if [ -d "$data/fuzz-seeds/$t" ]; then cp "$data/fuzz-seeds/$t"/* "$dir"; fi
   if [ -d "$data/fuzz-regressions/$t" ]; then cp "$data/fuzz-regressions/$t"/* "$dir" 2>/dev/null || true; fi
 }
 

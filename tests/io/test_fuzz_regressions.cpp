@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 TEST(FuzzRegressions, EveryFoundInputIsABadInputErrorNotACrash) {
   const fs::path root = testing::test_data("fuzz-regressions");
   int replayed = 0;
-  for (const char* reader : {"off", "obj", "ply", "stl", "landmarks", "vertex_map"}) {
+  for (const char* reader : {"off", "obj", "ply", "stl", "landmarks", "surface_landmarks", "vertex_map", "obj_uv"}) {
     const fs::path dir = root / reader;
     if (!fs::is_directory(dir)) continue;
     const std::string name = std::string(reader).size() == 3 ? std::string(".") + reader : std::string(reader);
