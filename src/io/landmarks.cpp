@@ -1,9 +1,11 @@
 #include "io/landmarks.h"
 
+#include <Eigen/Geometry>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -28,6 +30,12 @@ constexpr double kFarFromSurface = 0.01;
 constexpr double kNearSide = 1e-3;
 /// Two landmarks of one side closer than this fraction of the bounding box diagonal are at one point.
 constexpr double kSamePoint = 1e-12;
+/// Two landmarks of one side, one of them inside a face, closer than this fraction of that face's size
+/// (sqrt of its area; the smaller face if both are) are too close to cut apart: the cut between them holds
+/// triangles too thin to flatten. The sphere mapped onto a copy of itself scaled by 2, with two landmarks in one face,
+/// is the identity down to 1.5e-7 of the face's size apart; at 4.7e-8 its verification failed (exit 5), at 4.7e-9 no
+/// start could be found.
+constexpr double kTooClose = 1e-6;
 
 [[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
   throw InvalidInputError(path + ":" + std::to_string(line) + ": " + what);
@@ -52,6 +60,15 @@ class LandmarkMesh {
   [[nodiscard]] int n_faces() const { return static_cast<int>(F_->rows()); }
   [[nodiscard]] double diagonal() const { return diagonal_; }
   [[nodiscard]] int corner(int face, int k) const { return (*F_)(face, k); }
+
+  /// The size of the face a landmark lies in, sqrt of its area; infinite for a vertex (its own geometry is the
+  /// mesh's, checked by check_mesh).
+  [[nodiscard]] double face_size(const SurfacePoint& p) const {
+    if (p.kind != SurfacePoint::Kind::kFace) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d a = V_->row(corner(p.face.idx, 0)), b = V_->row(corner(p.face.idx, 1)),
+                          c = V_->row(corner(p.face.idx, 2));
+    return std::sqrt(0.5 * (b - a).cross(c - a).norm());
+  }
 
   [[nodiscard]] Eigen::Vector3d position(const SurfacePoint& p) const {
     if (p.kind == SurfacePoint::Kind::kVertex) return V_->row(p.vertex.idx).transpose();
@@ -249,6 +266,7 @@ class LandmarkCollector {
       Eigen::Vector3d x;
       int line;
       bool is_vertex;
+      double face_size;  ///< LandmarkMesh::face_size
     };
     std::vector<Position> positions;
   };
@@ -276,14 +294,23 @@ class LandmarkCollector {
     }
     if (!mesh.has_geometry()) return p;
     const Eigen::Vector3d x = mesh.position(p);
+    const double size = mesh.face_size(p);
     // Two distinct vertices at one position are two landmarks (as before surface points existed).
     for (const auto& y : seen.positions) {
-      if ((x - y.x).norm() <= kSamePoint * mesh.diagonal() && !(t.is_vertex && y.is_vertex)) {
+      const double distance = (x - y.x).norm();
+      if (distance <= kSamePoint * mesh.diagonal() && !(t.is_vertex && y.is_vertex)) {
         fail_at(line, "the landmark " + landmark_token(p) + " of mesh " + side +
                           " is at the same point as the one of " + unit_ + " " + std::to_string(y.line));
       }
+      const double face = std::min(size, y.face_size);
+      if (std::isfinite(face) && distance < kTooClose * face) {
+        fail_at(line, "the landmark " + landmark_token(p) + " of mesh " + side + " is " + number(distance) +
+                          " from the one of " + unit_ + " " + std::to_string(y.line) + ", under " +
+                          number(kTooClose) + " of the size of their face (" + number(face) +
+                          "): too close to cut apart; move them apart or keep one");
+      }
     }
-    seen.positions.push_back({x, line, t.is_vertex});
+    seen.positions.push_back({x, line, t.is_vertex, size});
     return p;
   }
 

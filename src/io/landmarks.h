@@ -47,7 +47,9 @@ Landmarks read_landmarks(std::istream& in, const std::string& name, int n_vertic
 /// \param VA, VB #V by 3 positions; FA, FB #F by 3 faces
 /// \throw IoError if the file cannot be read; InvalidInputError naming the file and line for a malformed token,
 ///        a vertex or face out of range, barycentric coordinates that are not finite, outside [0, 1] or do not sum
-///        to 1, two landmarks at one point of one side (naming both lines), or fewer than 2 pairs.
+///        to 1, two landmarks at one point of one side (naming both lines), two landmarks of one side, one of them in
+///        a face, closer than 1e-6 of that face's size sqrt(area) (too close to cut apart; naming both lines), or
+///        fewer than 2 pairs.
 Landmarks read_landmarks(const std::string& path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
                          const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
 
@@ -71,7 +73,8 @@ Landmarks make_landmarks(const std::vector<std::array<long long, 2>>& pairs, con
 /// \param a, b k points each, a[i] on mesh A corresponding to b[i] on mesh B: vertex or face points
 /// \param name how messages name the landmarks; each message names the offending row (0-based)
 /// \throw InvalidInputError naming the row for an edge point, a vertex or face out of range, coordinates that are
-///        not barycentric, two landmarks at one point of one side; or if a and b differ in length, or k < 2.
+///        not barycentric, two landmarks at one point of one side or too close to cut apart (as read_landmarks); or
+///        if a and b differ in length, or k < 2.
 Landmarks make_landmarks(const std::vector<SurfacePoint>& a, const std::vector<SurfacePoint>& b,
                          const std::string& name, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
                          const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);

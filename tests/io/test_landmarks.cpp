@@ -129,6 +129,11 @@ TEST(Landmarks, RejectsMalformedSurfacePointsWithTheLine) {
       {"1 f0:0.2,0.3,0.5", "lm.txt:2: the landmark f0:0.2,0.3,0.5 of mesh B is at the same point as the one of line 1"},
       {"1 0.2,0.3,0.5", "lm.txt:2: the landmark f0:"},
       {"1 f4:0,0.5,0.5", "lm.txt:2: the landmark f4:0,0.5,0.5 of mesh B is at the same point as the one of line 1"},
+      // Two landmarks of one side 2.8e-10 apart in a face of size 0.93: too close to cut apart.
+      {"1 f0:0.2,0.3000000002,0.4999999998",
+       "of mesh B is 2.82843e-10 from the one of line 1, under 1e-06 of the size of their face (0.930605): too close "
+       "to cut apart"},
+      {"1 0.2,0.3000000002,0.4999999998", "of mesh B is 2.82843e-10 from the one of line 1, under 1e-06"},
   };
   for (const auto& [second_line, message] : cases) {
     // Line 1 puts A's landmark on vertex 0 and B's on face 0 (0.2, 0.3, 0.5), which is also the 3D point
@@ -142,6 +147,12 @@ TEST(Landmarks, RejectsMalformedSurfacePointsWithTheLine) {
     } catch (const InvalidInputError& e) {
       EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << second_line << ": " << e.what();
     }
+  }
+  // 1e-5 of the face apart is far enough, inside a face and on an edge (closer to a vertex or a side than 1e-3 of
+  // the face, a point is moved onto it, and then is that vertex or on that side).
+  for (const char* text : {"0 f0:0.2,0.3,0.5\n1 f0:0.2,0.30001,0.49999\n", "f0:0.5,0.5,0 0\nf0:0.50001,0.49999,0 1\n"}) {
+    std::istringstream near(text);
+    EXPECT_NO_THROW(read_landmarks(near, "lm.txt", oct.V, oct.F, oct.V, oct.F)) << text;
   }
   // Without the meshes, only vertex indices.
   std::istringstream in("0 1\n1 f0:0.2,0.3,0.5\n");
