@@ -65,9 +65,7 @@ class LandmarkMesh {
   /// mesh's, checked by check_mesh).
   [[nodiscard]] double face_size(const SurfacePoint& p) const {
     if (p.kind != SurfacePoint::Kind::kFace) return std::numeric_limits<double>::infinity();
-    const Eigen::Vector3d a = V_->row(corner(p.face.idx, 0)), b = V_->row(corner(p.face.idx, 1)),
-                          c = V_->row(corner(p.face.idx, 2));
-    return std::sqrt(0.5 * (b - a).cross(c - a).norm());
+    return liftmap::face_size(*V_, *F_, p.face.idx);
   }
 
   [[nodiscard]] Eigen::Vector3d position(const SurfacePoint& p) const {
@@ -302,12 +300,9 @@ class LandmarkCollector {
         fail_at(line, "the landmark " + landmark_token(p) + " of mesh " + side +
                           " is at the same point as the one of " + unit_ + " " + std::to_string(y.line));
       }
-      const double face = std::min(size, y.face_size);
-      if (std::isfinite(face) && distance < kTooClose * face) {
+      if (const std::string why = too_close_to_cut(distance, size, y.face_size); !why.empty()) {
         fail_at(line, "the landmark " + landmark_token(p) + " of mesh " + side + " is " + number(distance) +
-                          " from the one of " + unit_ + " " + std::to_string(y.line) + ", under " +
-                          number(kTooClose) + " of the size of their face (" + number(face) +
-                          "): too close to cut apart; move them apart or keep one");
+                          " from the one of " + unit_ + " " + std::to_string(y.line) + ", " + why);
       }
     }
     seen.positions.push_back({x, line, t.is_vertex, size});
@@ -422,6 +417,45 @@ Landmarks make_landmarks(const std::vector<SurfacePoint>& a, const std::vector<S
     collector.add(ta, tb, static_cast<int>(i));
   }
   return collector.finish();
+}
+
+double face_size(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int face) {
+  const Eigen::Vector3d a = V.row(F(face, 0)), b = V.row(F(face, 1)), c = V.row(F(face, 2));
+  return std::sqrt(0.5 * (b - a).cross(c - a).norm());
+}
+
+std::string too_close_to_cut(double distance, double size_p, double size_q) {
+  const double face = std::min(size_p, size_q);
+  if (!std::isfinite(face) || !(distance < kTooClose * face)) return {};
+  return "under " + number(kTooClose) + " of the size of their face (" + number(face) +
+         "): too close to cut apart; move them apart or keep one";
+}
+
+void require_landmarks_apart(const std::vector<SurfacePoint>& points, const Eigen::MatrixXd& V,
+                             const Eigen::MatrixXi& F, const std::string& name) {
+  struct Placed {
+    size_t index;
+    Eigen::Vector3d x;
+    double size;
+  };
+  std::vector<Placed> placed;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const SurfacePoint& p = points[i];
+    if (p.kind != SurfacePoint::Kind::kFace || p.face.idx < 0 || p.face.idx >= F.rows()) continue;
+    if (!barycentric_problem(p.bary, p.face.idx).empty()) continue;  // the cut names it
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * V.row(F(p.face.idx, k)).transpose();
+    placed.push_back({i, x, face_size(V, F, p.face.idx)});
+  }
+  for (size_t j = 0; j < placed.size(); ++j) {
+    for (size_t i = 0; i < j; ++i) {
+      const double distance = (placed[j].x - placed[i].x).norm();
+      if (const std::string why = too_close_to_cut(distance, placed[i].size, placed[j].size); !why.empty()) {
+        throw InvalidInputError(name + ": landmarks " + std::to_string(placed[i].index) + " and " +
+                                std::to_string(placed[j].index) + " are " + number(distance) + " apart, " + why);
+      }
+    }
+  }
 }
 
 std::string landmark_token(const SurfacePoint& p) {

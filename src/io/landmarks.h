@@ -79,6 +79,20 @@ Landmarks make_landmarks(const std::vector<SurfacePoint>& a, const std::vector<S
                          const std::string& name, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
                          const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB);
 
+/// The size of face `face` of (V, F): the square root of its area.
+double face_size(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int face);
+
+/// Why two landmarks of one side `distance` apart are too close to cut apart, or "" if they are not: closer than
+/// 1e-6 of the size of the face they lie in (the smaller one; face_size, infinite for a vertex landmark). The cut
+/// between two such points holds triangles too thin to flatten.
+std::string too_close_to_cut(double distance, double size_p, double size_q);
+
+/// Checks that no two face points among `points` (the landmarks of one mesh, as map_meshes takes them) are too close
+/// to cut apart (too_close_to_cut). Points that are not valid face points of (V, F) are skipped (the cut names them).
+/// \throw InvalidInputError naming `name` and both landmarks' indices (0-based).
+void require_landmarks_apart(const std::vector<SurfacePoint>& points, const Eigen::MatrixXd& V,
+                             const Eigen::MatrixXi& F, const std::string& name);
+
 /// The token of a landmark in the format above: `123` for a vertex point, `f<face>:<b0>,<b1>,<b2>` for a face point
 /// (each coordinate the shortest text that reads back as the same double).
 /// \pre p is a vertex or face point

@@ -478,7 +478,8 @@ DiskOverlay overlay_disks(const LiftedBijection& bijection, const Mesh& M, const
     const double area = doubled_area(corners(M, Phi, FaceId(i)));
     if (std::abs(covered - area) > 1e-6 * area) {
       throw PipelineError("overlay: face " + std::to_string(i) + " of M^ is covered by cells of doubled area " +
-                          std::to_string(covered) + ", not its own " + std::to_string(area));
+                          figure(covered, 6) + ", not its own " + figure(area, 6) +
+                          " (off by more than 1e-6 of it: the two flattenings do not tile the face)");
     }
   }
   return builder.take();

@@ -19,6 +19,7 @@
 #include "flatten/distortion.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
+#include "io/landmarks.h"
 #include "map/map_overlay.h"
 #include "map/thread_count_scope.h"
 
@@ -196,6 +197,18 @@ struct MapIndex {
 namespace {
 
 using Progress = std::function<void(const std::string&, const std::string&)>;
+
+/// Runs a stage whose input the pipeline made (cut disks, flattenings) from checked inputs: an InvalidInputError
+/// it throws (a precondition of a stage's function, e.g. a degenerate face of a cut disk) is a failure of the
+/// pipeline on valid input, so it becomes a PipelineError (exit 5) naming the stage, not a bad-input error (exit 4).
+template <typename Stage>
+void on_checked_input(const char* stage, Stage&& run) {
+  try {
+    run();
+  } catch (const InvalidInputError& e) {
+    throw PipelineError(std::string(stage) + ": " + e.what() + " (on valid input)");
+  }
+}
 
 /// Step 1: both meshes cut to disks along the same tree (paper §3.1); the disks' connectivity and positions.
 void cut_stage(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
@@ -469,12 +482,18 @@ MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   if (landmarks_a.size() != landmarks_b.size() || landmarks_a.size() < 2) {
     throw InvalidInputError("map: need at least 2 corresponding landmarks on each mesh");
   }
+  require_landmarks_apart(landmarks_a, VA, FA, "map: " + options.name_a);
+  require_landmarks_apart(landmarks_b, VB, FB, "map: " + options.name_b);
+  if (options.flatten.p != 2 && !std::isinf(options.flatten.p)) {
+    throw InvalidInputError("map: p must be 2 or infinity, not " + figure(options.flatten.p));
+  }
   const ThreadCountScope threads(options.threads);
   MapResult r;
   cut_stage(VA, FA, VB, FB, landmarks_a, landmarks_b, options, progress, r);
-  flatten_stage(options, progress, r);
-  lift_stage(VA, FA, VB, FB, options, progress, r);
-  if (options.overlay) overlay_stage(progress, r);
+  // From here on every input has been checked: a complaint about the data is about data the pipeline made.
+  on_checked_input("flatten", [&] { flatten_stage(options, progress, r); });
+  on_checked_input("lift", [&] { lift_stage(VA, FA, VB, FB, options, progress, r); });
+  if (options.overlay) on_checked_input("overlay", [&] { overlay_stage(progress, r); });
   const auto t0 = Clock::now();
   r.verification = verify_map(r, landmarks_a, landmarks_b);
   map_distortion(r, options.distortion_samples_per_edge);

@@ -179,6 +179,31 @@ TEST(MapMeshes, RejectsInvalidInput) {
   const std::vector<VertexId> l{VertexId(0), VertexId(1)};
   EXPECT_THROW(map_meshes(cow.V, cow.F, elephant.V, elephant.F, l, l), InvalidInputError);
   EXPECT_THROW(map_meshes(cow.V, cow.F, cow.V, cow.F, {VertexId(0)}, {VertexId(0)}), InvalidInputError);
+  const auto message = [&](const std::vector<SurfacePoint>& a, const std::vector<SurfacePoint>& b,
+                           const MapOptions& options) -> std::string {
+    try {
+      (void)map_meshes(cow.V, cow.F, cow.V, cow.F, a, b, options);
+    } catch (const InvalidInputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  // Landmarks from a C++ caller pass the landmark files' rule: two face points 1e-10 of a face apart cannot be cut
+  // apart (in a map they ended in a degenerate face of the cut disk).
+  const std::vector<SurfacePoint> a{SurfacePoint::at_vertex(VertexId(0)),
+                                    SurfacePoint::in_face(FaceId(100), {0.2, 0.3, 0.5}),
+                                    SurfacePoint::in_face(FaceId(100), {0.2, 0.3 + 1e-10, 0.5 - 1e-10})};
+  const std::vector<SurfacePoint> b{SurfacePoint::at_vertex(VertexId(0)), SurfacePoint::at_vertex(VertexId(1)),
+                                    SurfacePoint::at_vertex(VertexId(2))};
+  MapOptions options;
+  options.name_a = "cow A";
+  EXPECT_NE(message(a, b, options).find("map: cow A: landmarks 1 and 2 are"), std::string::npos)
+      << message(a, b, options);
+  EXPECT_NE(message(a, b, options).find("too close to cut apart"), std::string::npos);
+  // A norm other than 2 or infinity is an invalid option, named before any work.
+  options.flatten.p = 0.5;
+  EXPECT_NE(message(b, b, options).find("map: p must be 2 or infinity, not 0.5"), std::string::npos)
+      << message(b, b, options);
 }
 
 }  // namespace
