@@ -127,8 +127,10 @@ struct MapResult {
 /// \param landmarks_a, landmarks_b k >= 2 corresponding vertices
 /// Each mesh is validated once, by check_mesh (the validation of `liftmap check`), before any computation.
 /// \throw InvalidInputError naming MapOptions::name_a or name_b if a mesh cannot be mapped (see check_mesh), or
-///        if the landmarks are invalid;
-///        PipelineError if a stage fails. A map whose verification fails is returned with
+///        if the landmarks are invalid (including two too close to cut apart: require_landmarks_apart), or if
+///        options.flatten.p is neither 2 nor infinity;
+///        PipelineError if a stage fails (a complaint of the flattening, the lift or the overlay about its data,
+///        which the pipeline made from checked inputs, included). A map whose verification fails is returned with
 ///        `verification.passed == false`: the caller decides (the CLI writes it and exits with an error).
 MapResult map_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
                      const Eigen::MatrixXi& FB, const std::vector<VertexId>& landmarks_a,
