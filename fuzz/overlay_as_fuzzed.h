@@ -41,8 +41,8 @@ inline TexturedMesh fuzz_textured_octahedron() {
 /// \throw IoError or InvalidInputError for bad input; anything else is a bug
 inline void overlay_as_fuzzed(const std::string& data) {
   static const TexturedMesh oct = fuzz_textured_octahedron();
-  const Overlay o = read_overlay_texts(overlay_texts_of(data), "/nonexistent-liftmap-fuzz/overlay.obj", oct.V, oct.F,
-                                       oct.V, oct.F);
+  const Overlay o =
+      read_overlay_texts(overlay_texts_of(data), "/nonexistent-liftmap-fuzz/overlay.obj", oct.V, oct.F, oct.V, oct.F);
   const Eigen::MatrixXd placed = interpolate_at(oct.F, oct.V, o.on_b);
   (void)folded_faces(o.F, placed, oct.V, oct.F, o.on_b, o.face_b);
   static const Image texture(4, 4, Eigen::Vector3d(0.2, 0.5, 0.8));

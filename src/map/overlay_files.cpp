@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "io/output_file.h"
 #include "io/line_reader.h"
+#include "io/output_file.h"
 #include "io/read_mesh.h"
 #include "io/text_line.h"
 #include "io/vertex_map.h"

@@ -150,7 +150,8 @@ TEST(Landmarks, RejectsMalformedSurfacePointsWithTheLine) {
   }
   // 1e-5 of the face apart is far enough, inside a face and on an edge (closer to a vertex or a side than 1e-3 of
   // the face, a point is moved onto it, and then is that vertex or on that side).
-  for (const char* text : {"0 f0:0.2,0.3,0.5\n1 f0:0.2,0.30001,0.49999\n", "f0:0.5,0.5,0 0\nf0:0.50001,0.49999,0 1\n"}) {
+  for (const char* text :
+       {"0 f0:0.2,0.3,0.5\n1 f0:0.2,0.30001,0.49999\n", "f0:0.5,0.5,0 0\nf0:0.50001,0.49999,0 1\n"}) {
     std::istringstream near(text);
     EXPECT_NO_THROW(read_landmarks(near, "lm.txt", oct.V, oct.F, oct.V, oct.F)) << text;
   }

@@ -106,7 +106,8 @@ TEST(OverlayFiles, MissingTableIsAnIoErrorNamingIt) {
 
 TEST(OverlayFiles, TruncatedAndChangedInputsAreBadInputErrorsNotCrashes) {
   const std::string data = split_octahedron_input();
-  for (size_t n = 0; n < data.size(); ++n) expect_bad_input_error_at_most(data.substr(0, n), "first " + std::to_string(n));
+  for (size_t n = 0; n < data.size(); ++n)
+    expect_bad_input_error_at_most(data.substr(0, n), "first " + std::to_string(n));
   int changed = 0;
   for (size_t i = 0; i < data.size(); ++i) {
     for (const char c : {'-', '9', 'e', '.', ' ', '\n', '\0', 'x'}) {
