@@ -36,6 +36,7 @@
 #include "map/overlay_files.h"
 #include "map/transfer.h"
 #include "map/write_map.h"
+#include "passive_openmp_waits.h"
 
 namespace {
 
@@ -579,6 +580,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  liftmap_app::run_with_passive_openmp_waits(argv);
   try {
     // The executable owns its process: OpenBLAS's pool (pthreads build only) at one thread during factorisations.
     liftmap::SparseCholesky::limit_openblas_pool(true);
