@@ -83,8 +83,10 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"start_relaxation_steps", options.flatten.joint_start.newton.max_iterations},
       {"tree", options.cut.tree == CutOptions::Tree::kPath ? "path" : "mst"},
       {"remesh", options.cut.remesh},
-      // The process's OpenMP wait policy as libgomp read it (the CLI makes it passive unless set): it decides the
-      // speed on a shared machine, never the result.
+  };
+  // How the process ran, which decides its speed, never the map: the OpenMP wait policy as libgomp read it (the
+  // CLI makes it passive unless set).
+  j["run"] = {
       {"openmp_wait_policy", std::getenv("OMP_WAIT_POLICY") != nullptr ? std::getenv("OMP_WAIT_POLICY") : "default"},
   };
   j["cut"] = {

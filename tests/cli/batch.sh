@@ -53,7 +53,7 @@ same_pair() {
 import json, sys
 def strip(x):
     if isinstance(x, dict):
-        return {k: strip(v) for k, v in x.items() if k != "seconds"}
+        return {k: strip(v) for k, v in x.items() if k not in ("seconds", "run")}
     return [strip(v) for v in x] if isinstance(x, list) else x
 assert strip(json.load(open(sys.argv[1]))) == strip(json.load(open(sys.argv[2])))' "$2/report.json" "$3/report.json"
 }

@@ -8,8 +8,8 @@ examples="$3"
 source "$(dirname "$0")/lib.sh"
 a="$meshes/larger_sphere.off"
 b="$meshes/ellipsoid.off"
-policy_of() {  # FOLDER: the report's openmp_wait_policy
-  /usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["options"]["openmp_wait_policy"])' \
+policy_of() {  # FOLDER: the report's run.openmp_wait_policy
+  /usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["run"]["openmp_wait_policy"])' \
     "$1/report.json"
 }
 map() {  # FOLDER: a map of the example without optimisation

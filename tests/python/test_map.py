@@ -19,9 +19,10 @@ def read_map_file(path):
 
 
 def without_seconds(report):
-    """The report without its wall times, which differ between any two runs."""
+    """The report without its wall times and how the process ran ("run": the CLI's OpenMP wait policy), which
+    differ between runs and decide no result."""
     if isinstance(report, dict):
-        return {k: without_seconds(v) for k, v in report.items() if k != "seconds"}
+        return {k: without_seconds(v) for k, v in report.items() if k not in ("seconds", "run")}
     if isinstance(report, list):
         return [without_seconds(v) for v in report]
     return report
