@@ -412,7 +412,14 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     if (options.on_iteration) options.on_iteration(res.iterations.size() - 1, it);
     X = br.X;
     if (previous - it.energy < options.relative_tolerance * previous) {
-      res.converged = true;
+      // Converged only if the subproblem was solved (certified): a small step from one that stalled or ran out of
+      // Newton steps says nothing about the optimum.
+      res.converged = br.converged();
+      if (!res.converged) {
+        res.stop_reason = "outer iteration " + std::to_string(iter + 1) + " lowered the energy by less than the " +
+                          "tolerance, but its subproblem was not solved (" + to_string(br.status) +
+                          "): the flattenings may be far from the optimum";
+      }
       break;
     }
   }
