@@ -52,6 +52,7 @@ void refuse_overwriting_inputs(const std::string& output, const std::vector<std:
 
 void prepare_output_folder(const std::string& dir, const std::vector<std::string>& outputs,
                            const std::vector<std::string>& inputs) {
+  refuse_overwriting_inputs(dir, inputs);  // an input given as the folder: a usage error, not an unwritable folder
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw IoError(dir + ": cannot create output folder: " + ec.message());

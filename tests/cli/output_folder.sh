@@ -61,6 +61,9 @@ expect "read-only folder" 3 "^liftmap: $ro: cannot write into the output folder"
 require "read-only folder: nothing computed" bash -c "! grep -q '\] cut ' <<<\"\$1\"" _ "$err"
 echo "a file" >"$tmp/file"
 expect "folder is a file" 3 "^liftmap: $tmp/file(/.*)?: " -- map "$a" "$b" -l "$lm" -o "$tmp/file"
+# The folder named as one of the inputs: the command line's mistake (exit 2), not an unwritable folder (exit 3).
+expect "folder is an input mesh" 2 "^liftmap: the output $a would overwrite the input $a" -- map "$a" "$b" -l "$lm" -o "$a"
+expect "folder is the landmark file" 2 "would overwrite the input $lm" -- map "$a" "$b" -l "$lm" -o "$lm"
 mkdir -p "$tmp/blocked/render.png/inside"
 expect "old output that cannot be removed" 3 "render.png: cannot remove the previous run's file" -- \
   map "$a" "$b" -l "$lm" -o "$tmp/blocked"
