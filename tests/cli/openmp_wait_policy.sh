@@ -6,15 +6,13 @@ liftmap="$1"
 meshes="$2"
 examples="$3"
 source "$(dirname "$0")/lib.sh"
-a="$meshes/larger_sphere.off"
-b="$meshes/ellipsoid.off"
 policy_of() {  # FOLDER: the report's run.openmp_wait_policy
   /usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["run"]["openmp_wait_policy"])' \
     "$1/report.json"
 }
 map() {  # FOLDER: a map of the example without optimisation
-  expect "map into $1" 0 ".*" -- map "$a" "$b" -l "$examples/sphere-ellipsoid/landmarks.txt" -o "$tmp/$1" \
-    --max-iterations 0 --quiet
+  expect "map into $1" 0 ".*" -- map "$meshes/larger_sphere.off" "$meshes/ellipsoid.off" \
+    -l "$examples/sphere-ellipsoid/landmarks.txt" -o "$tmp/$1" --max-iterations 0 --quiet
 }
 unset OMP_WAIT_POLICY GOMP_SPINCOUNT
 map unset
