@@ -438,14 +438,13 @@ void require_landmarks_apart(const std::vector<SurfacePoint>& points, const Eige
     Eigen::Vector3d x;
     double size;
   };
+  const LandmarkMesh mesh(' ', V, F);
   std::vector<Placed> placed;
   for (size_t i = 0; i < points.size(); ++i) {
     const SurfacePoint& p = points[i];
     if (p.kind != SurfacePoint::Kind::kFace || p.face.idx < 0 || p.face.idx >= F.rows()) continue;
     if (!barycentric_problem(p.bary, p.face.idx).empty()) continue;  // the cut names it
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) x += p.bary[static_cast<size_t>(k)] * V.row(F(p.face.idx, k)).transpose();
-    placed.push_back({i, x, face_size(V, F, p.face.idx)});
+    placed.push_back({i, mesh.position(p), mesh.face_size(p)});
   }
   for (size_t j = 0; j < placed.size(); ++j) {
     for (size_t i = 0; i < j; ++i) {
