@@ -27,6 +27,7 @@
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
 #include "io/read_obj_with_uv.h"
+#include "io/vertex_map.h"
 #include "io/write_mesh.h"
 #include "map/bake_texture.h"
 #include "map/batch.h"
@@ -304,10 +305,15 @@ struct TransferJob {
   bool exact = false;  ///< transfer mesh: map_path is a map's overlay.obj
 };
 
+/// A mesh read from `path`, as a map file applied to it names it.
+liftmap::MeshOfMap mesh_of_map(const std::string& path, const liftmap::TriangleMesh& mesh) {
+  return {path, liftmap::mesh_fingerprint(mesh.V.rows(), mesh.F)};
+}
+
 int run_transfer_attributes(const TransferJob& job) {
   liftmap::refuse_overwriting_inputs(job.out_path, {job.map_path, job.onto_path, job.data_path});
   const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
-  const auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
+  const auto points = liftmap::read_map_file(job.map_path, {mesh_of_map(job.onto_path, onto), {}}).images;
   const Eigen::MatrixXd data = liftmap::read_attributes(job.data_path);
   if (data.rows() != onto.V.rows()) {
     throw liftmap::InvalidInputError(job.data_path + ": " + std::to_string(data.rows()) + " rows, but " +
@@ -328,10 +334,13 @@ struct PlacedMesh {
 PlacedMesh mesh_to_place(const TransferJob& job, const liftmap::TriangleMesh& onto) {
   const liftmap::TriangleMesh source = liftmap::read_mesh(job.connectivity_path);
   if (job.exact) {
-    liftmap::Overlay o = liftmap::read_overlay(job.map_path, source.V, source.F, onto.V, onto.F);
+    liftmap::Overlay o =
+        liftmap::read_overlay(job.map_path, source.V, source.F, onto.V, onto.F, {job.connectivity_path, job.onto_path});
     return {std::move(o.F), std::move(o.on_b), std::move(o.face_b)};
   }
-  auto points = liftmap::read_vertex_map(job.map_path, static_cast<int>(onto.F.rows()));
+  auto points = liftmap::read_map_file(job.map_path,
+                                       {mesh_of_map(job.onto_path, onto), mesh_of_map(job.connectivity_path, source)})
+                    .images;
   if (points.size() != static_cast<size_t>(source.V.rows())) {
     throw liftmap::InvalidInputError(job.map_path + ": " + std::to_string(points.size()) + " lines, but " +
                                      job.connectivity_path + " has " + std::to_string(source.V.rows()) + " vertices");
@@ -430,7 +439,8 @@ int run_transfer_texture(TextureJob job) {
   const std::vector<std::string> inputs{overlay_obj, tables[0], tables[1], job.from_path, job.onto_path, texture_path};
   for (const std::string& o : {job.out_path, stem + ".obj", stem + ".mtl"})
     liftmap::refuse_overwriting_inputs(o, inputs);
-  const liftmap::Overlay overlay = liftmap::read_overlay(overlay_obj, a.V, a.F, b.V, b.F);
+  const liftmap::Overlay overlay =
+      liftmap::read_overlay(overlay_obj, a.V, a.F, b.V, b.F, {job.from_path, job.onto_path});
   const liftmap::Image texture = liftmap::read_image(texture_path);
   if (!out.parent_path().empty()) {
     std::error_code ec;
@@ -449,15 +459,21 @@ int run_transfer_texture(TextureJob job) {
 
 int run_eval(const std::string& map_path, const std::string& truth_path, const std::string& target_path) {
   const liftmap::TriangleMesh target = liftmap::read_mesh(target_path);
-  const auto n_faces = static_cast<int>(target.F.rows());
-  const auto map = liftmap::read_vertex_map(map_path, n_faces);
-  const auto truth = liftmap::read_vertex_map(truth_path, n_faces);
-  if (map.size() != truth.size()) {
-    throw liftmap::InvalidInputError(map_path + ": " + std::to_string(map.size()) + " map lines, but " + truth_path +
-                                     " has " + std::to_string(truth.size()) +
-                                     ": the maps do not start from the same mesh");
+  const liftmap::MapFileMeshes meshes{mesh_of_map(target_path, target), {}};
+  const liftmap::MapFile map = liftmap::read_map_file(map_path, meshes);
+  const liftmap::MapFile truth = liftmap::read_map_file(truth_path, meshes);
+  // Compared per source vertex: the sources' vertices must be the same, not their faces.
+  const bool sources_differ =
+      map.meshes.source && truth.meshes.source && map.meshes.source->vertices != truth.meshes.source->vertices;
+  if (map.images.size() != truth.images.size() || sources_differ) {
+    throw liftmap::InvalidInputError(
+        map_path + ": " + std::to_string(map.images.size()) + " map lines" +
+        (map.meshes.source ? " from a mesh with " + to_string(*map.meshes.source) : std::string()) + ", but " +
+        truth_path + " has " + std::to_string(truth.images.size()) +
+        (truth.meshes.source ? " from a mesh with " + to_string(*truth.meshes.source) : std::string()) +
+        ": the maps do not start from the same mesh");
   }
-  const liftmap::MapDifference d = liftmap::compare_maps(target.V, target.F, map, truth);
+  const liftmap::MapDifference d = liftmap::compare_maps(target.V, target.F, map.images, truth.images);
   std::printf("mean error: %.6g\nmax error:  %.6g (source vertex %d)\n(Euclidean distance on %s / sqrt(area))\n",
               d.mean, d.max, d.worst_vertex, target_path.c_str());
   return liftmap::kExitOk;

@@ -15,10 +15,12 @@
 
 namespace liftmap {
 
-void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& images, const std::string& header) {
+void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& images, const std::string& header,
+                      const MapMeshes& meshes) {
   OutputFile f(path);
   std::istringstream lines(header);
   for (std::string line; std::getline(lines, line);) std::fprintf(f.get(), "# %s\n", line.c_str());
+  write_map_header_lines(f.get(), meshes);
   std::fprintf(f.get(), "# one line per source vertex: face b0 b1 b2 (0-based face of the target mesh)\n");
   TextLine line;
   for (const SurfacePoint& p : images) {
@@ -27,23 +29,24 @@ void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& 
   f.close();
 }
 
-std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_faces) {
-  std::ifstream in = open_input_file(path, "map file");
-  return read_vertex_map(in, path, n_target_faces);
-}
+namespace {
 
-std::vector<SurfacePoint> read_vertex_map(std::istream& in, const std::string& path, int n_target_faces) {
+/// The lines of a map file; its header checked against `expected` (if not null) before the first map line.
+MapFile read_lines(std::istream& in, const std::string& path, int n_target_faces, const MapFileMeshes* expected) {
   constexpr double kTol = BarycentricTolerance::kTolerance;
-  std::vector<SurfacePoint> images;
+  MapFile map;
+  std::vector<SurfacePoint>& images = map.images;
   std::string text;
   for (int line_no = 1; std::getline(in, text); ++line_no) {
     const std::string where = path + ":" + std::to_string(line_no) + ": ";
     if (line_no == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // a UTF-8 byte-order mark
+    if (read_map_header_line(text, map.meshes, where)) continue;
     if (const size_t hash = text.find('#'); hash != std::string::npos) text.resize(hash);
     std::istringstream line(text);
     std::vector<std::string> t;
     for (std::string token; line >> token;) t.push_back(token);
     if (t.empty()) continue;
+    if (expected && images.empty()) require_map_meshes(map.meshes, *expected, path);
     if (t.size() != 4) {
       throw IoError(where + "expected 'face b0 b1 b2', found " + std::to_string(t.size()) + " fields");
     }
@@ -80,7 +83,27 @@ std::vector<SurfacePoint> read_vertex_map(std::istream& in, const std::string& p
   }
   if (in.bad()) throw IoError(path + ": read error");
   if (images.empty()) throw IoError(path + ": no map lines ('face b0 b1 b2')");
-  return images;
+  return map;
+}
+
+}  // namespace
+
+std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_faces) {
+  std::ifstream in = open_input_file(path, "map file");
+  return read_vertex_map(in, path, n_target_faces);
+}
+
+std::vector<SurfacePoint> read_vertex_map(std::istream& in, const std::string& name, int n_target_faces) {
+  return read_lines(in, name, n_target_faces, nullptr).images;
+}
+
+MapFile read_map_file(const std::string& path, const MapFileMeshes& meshes) {
+  std::ifstream in = open_input_file(path, "map file");
+  return read_map_file(in, path, meshes);
+}
+
+MapFile read_map_file(std::istream& in, const std::string& name, const MapFileMeshes& meshes) {
+  return read_lines(in, name, static_cast<int>(meshes.target.fingerprint.faces), &meshes);
 }
 
 }  // namespace liftmap

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "io/line_reader.h"
+#include "io/map_header.h"
 #include "io/output_file.h"
 #include "io/read_mesh.h"
 #include "io/text_line.h"
@@ -49,6 +50,17 @@ SurfacePoint face_point(const Eigen::MatrixXd& T, Eigen::Index i, Eigen::Index c
   return SurfacePoint::in_face(FaceId(f), clamp_barycentric(b));
 }
 
+/// The meshes named by the `#` lines at the start of a table (read_map_header_line).
+MapMeshes header_meshes(const std::string& table, const std::string& path) {
+  MapMeshes meshes;
+  std::istringstream lines(table);
+  std::string text;
+  for (int line_no = 1; std::getline(lines, text) && text.rfind('#', 0) == 0; ++line_no) {
+    read_map_header_line(text, meshes, path + ":" + std::to_string(line_no) + ": ");
+  }
+  return meshes;
+}
+
 }  // namespace
 
 std::array<std::string, 2> overlay_table_paths(const std::string& obj_path) {
@@ -57,7 +69,7 @@ std::array<std::string, 2> overlay_table_paths(const std::string& obj_path) {
   return {stem + "_points.txt", stem + "_faces.txt"};
 }
 
-void write_overlay(const std::string& obj_path, const Overlay& overlay) {
+void write_overlay(const std::string& obj_path, const Overlay& overlay, const MapMeshes& meshes) {
   const auto [points_path, faces_path] = overlay_table_paths(obj_path);
   write_mesh(obj_path, overlay.VA, overlay.F);
   {
@@ -66,6 +78,7 @@ void write_overlay(const std::string& obj_path, const Overlay& overlay) {
                  "# liftmap overlay: per vertex of %s, its point on A and on B\n"
                  "# faceA a0 a1 a2 faceB b0 b1 b2 (0-based faces of the input meshes, barycentric coordinates)\n",
                  std::filesystem::path(obj_path).filename().string().c_str());
+    write_map_header_lines(f.get(), meshes);
     TextLine line;
     for (size_t i = 0; i < overlay.on_a.size(); ++i) {
       const SurfacePoint& a = overlay.on_a[i];
@@ -85,7 +98,8 @@ void write_overlay(const std::string& obj_path, const Overlay& overlay) {
 }
 
 Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
-                     const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
+                     const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB,
+                     const std::array<std::string, 2>& mesh_paths) {
   const auto [points_path, faces_path] = overlay_table_paths(obj_path);
   std::error_code ec;
   if (!std::filesystem::exists(obj_path, ec)) throw IoError(obj_path + ": no such file");
@@ -93,12 +107,17 @@ Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, con
   texts.obj = read_file(obj_path, "overlay file");
   texts.points = read_file(points_path, "overlay table");
   texts.faces = read_file(faces_path, "overlay table");
-  return read_overlay_texts(texts, obj_path, VA, FA, VB, FB);
+  return read_overlay_texts(texts, obj_path, VA, FA, VB, FB, mesh_paths);
 }
 
 Overlay read_overlay_texts(const OverlayTexts& texts, const std::string& obj_path, const Eigen::MatrixXd& VA,
-                           const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
+                           const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB,
+                           const std::array<std::string, 2>& mesh_paths) {
   const auto [points_path, faces_path] = overlay_table_paths(obj_path);
+  require_map_meshes(
+      header_meshes(texts.points, points_path),
+      {{mesh_paths[1], mesh_fingerprint(VB.rows(), FB)}, MeshOfMap{mesh_paths[0], mesh_fingerprint(VA.rows(), FA)}},
+      points_path);
   const TriangleMesh mesh = read_mesh_data(texts.obj, obj_path);
   std::vector<int> point_lines, face_lines;
   std::istringstream points(texts.points), faces(texts.faces);

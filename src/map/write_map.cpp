@@ -211,6 +211,12 @@ Overlay overlay_in_given_order(Overlay o, const MapInputs& in) {
   return o;
 }
 
+/// The inputs as the files of a map from A onto B name them: source A, target B, faces as given.
+MapMeshes input_meshes(const MapInputs& in) {
+  return {mesh_fingerprint(in.a.V.rows(), faces_as_given(in.a, in.reversed_a)),
+          mesh_fingerprint(in.b.V.rows(), faces_as_given(in.b, in.reversed_b))};
+}
+
 std::string in_folder(const std::string& dir, const std::string& name) {
   return (std::filesystem::path(dir) / name).string();
 }
@@ -219,10 +225,15 @@ std::string in_folder(const std::string& dir, const std::string& name) {
 void write_input_maps(const std::string& dir, const MapResult& map, const MapInputs& in) {
   const std::vector<SurfacePoint> a_to_b = images_in_given_order(map.a_to_b, in.reversed_b);
   const std::vector<SurfacePoint> b_to_a = images_in_given_order(map.b_to_a, in.reversed_a);
-  write_vertex_map(in_folder(dir, "A_to_B.txt"), a_to_b, "liftmap map of A = " + in.name_a + " onto B = " + in.name_b);
-  write_vertex_map(in_folder(dir, "B_to_A.txt"), b_to_a, "liftmap map of B = " + in.name_b + " onto A = " + in.name_a);
-  write_barycentric_matrix(in_folder(dir, "A_to_B.ijv"), a_to_b, faces_as_given(in.b, in.reversed_b));
-  write_barycentric_matrix(in_folder(dir, "B_to_A.ijv"), b_to_a, faces_as_given(in.a, in.reversed_a));
+  const Eigen::MatrixXi FA = faces_as_given(in.a, in.reversed_a);
+  const Eigen::MatrixXi FB = faces_as_given(in.b, in.reversed_b);
+  const MapMeshes a_onto_b = input_meshes(in);
+  write_vertex_map(in_folder(dir, "A_to_B.txt"), a_to_b, "liftmap map of A = " + in.name_a + " onto B = " + in.name_b,
+                   a_onto_b);
+  write_vertex_map(in_folder(dir, "B_to_A.txt"), b_to_a, "liftmap map of B = " + in.name_b + " onto A = " + in.name_a,
+                   {a_onto_b.target, a_onto_b.source});
+  write_barycentric_matrix(in_folder(dir, "A_to_B.ijv"), a_to_b, FB);
+  write_barycentric_matrix(in_folder(dir, "B_to_A.ijv"), b_to_a, FA);
 }
 
 }  // namespace
@@ -241,7 +252,9 @@ void write_map_folder(const std::string& dir, const MapResult& map, const MapInp
                    "B: " + std::filesystem::path(in.name_b).filename().string());
   write_distortion_histogram(in_folder(dir, "distortion.png"), map);
   write_textured_meshes(dir, map);
-  if (map.overlay.F.rows() > 0) write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in));
+  if (map.overlay.F.rows() > 0) {
+    write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in), input_meshes(in));
+  }
   // Last: a folder with a report.json holds every file of this run.
   OutputFile file(in_folder(dir, "report.json"));
   const std::string text = report.dump(2) + '\n';

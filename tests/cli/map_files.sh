@@ -49,9 +49,38 @@ expect "transfer mesh" 0 "^liftmap: 0 of 1620 transferred triangles are folded" 
   transfer mesh "$good" --onto "$b" --connectivity "$a" -o "$tmp/a_on_b.obj"
 require "folded list written" grep -q "0 of 1620" "$tmp/a_on_b.obj.folded.txt"
 python3 "$(dirname "$0")/make_variant.py" invert "$a" "$tmp/inverted.off"
+grep -v -e '^# source mesh: ' -e '^# target mesh: ' "$good" >"$tmp/unnamed.txt"  # as a map of another tool
 expect "transfer mesh, reversed faces" 0 "^liftmap: 1620 of 1620 transferred triangles are folded" -- \
-  transfer mesh "$good" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/inv_on_b.obj"
+  transfer mesh "$tmp/unnamed.txt" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/inv_on_b.obj"
 require "folded list holds every face" test "$(grep -c -v '^#' "$tmp/inv_on_b.obj.folded.txt")" = 1620
+
+# Map files and the overlay name the meshes they were made for (vertex and face counts, a hash of the faces): a map
+# applied to other meshes is refused (exit 4, both files named) where it gave exit 0 and a meaningless output.
+# Another pose of the same mesh (the same faces) is accepted; so are files that name no mesh (other tools).
+require "A_to_B.txt names A" grep -q "^# source mesh: 812 vertices, 1620 faces, connectivity fnv1a64:" "$good"
+require "A_to_B.txt names B" grep -q "^# target mesh: 162 vertices, 320 faces, connectivity fnv1a64:" "$good"
+require "B_to_A.txt names them the other way" grep -q "^# target mesh: 812 vertices" "$tmp/m/B_to_A.txt"
+require "the overlay names them" grep -q "^# target mesh: 162 vertices" "$tmp/m/overlay_points.txt"
+cp "$meshes/cow.off" "$tmp/cow.off"
+not_b="made for a target mesh with 162 vertices, 320 faces, connectivity fnv1a64:[0-9a-f]{16}, but $tmp/cow.off has"
+expect "transfer mesh onto another mesh" 4 "^liftmap: $good: $not_b" -- \
+  transfer mesh "$good" --onto "$tmp/cow.off" --connectivity "$a" -o "$tmp/other.obj"
+require "nothing written onto another mesh" test ! -e "$tmp/other.obj"
+expect "transfer mesh from another mesh" 4 "^liftmap: $good: made for a source mesh with 812 vertices, .* but $tmp/inverted.off has 812 vertices, 1620 faces, connectivity fnv1a64:[0-9a-f]{16} \(the same counts, other faces" -- \
+  transfer mesh "$good" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/other.obj"
+seq 1 162 >"$tmp/on_b.txt"
+expect "transfer attributes onto another mesh" 4 "^liftmap: $tmp/m/A_to_B.txt: made for a target mesh with 162 vertices" -- \
+  transfer attributes "$tmp/m/A_to_B.txt" --onto "$tmp/cow.off" --data "$tmp/on_b.txt" -o "$tmp/other.txt"
+expect "eval on another mesh" 4 "^liftmap: $good: $not_b" -- eval "$good" "$good" --target "$tmp/cow.off"
+sed 's/^# source mesh: 812 vertices/# source mesh: 999 vertices/' "$good" >"$tmp/from_other.txt"
+expect "eval of maps from two meshes" 4 "^liftmap: $good: 812 map lines from a mesh with 812 vertices, .* but $tmp/from_other.txt has 812 from a mesh with 999 vertices" -- \
+  eval "$good" "$tmp/from_other.txt" --target "$b"
+expect "transfer mesh --exact onto another mesh" 4 "^liftmap: $tmp/m/overlay_points.txt: $not_b" -- \
+  transfer mesh --exact "$tmp/m/overlay.obj" --onto "$tmp/cow.off" --connectivity "$a" -o "$tmp/other.obj"
+python3 "$(dirname "$0")/make_variant.py" scale "$b" "$tmp/b_scaled.off" 3
+expect "transfer mesh onto another pose of B" 0 "^liftmap: 0 of 1620 transferred triangles are folded" -- \
+  transfer mesh "$good" --onto "$tmp/b_scaled.off" --connectivity "$a" -o "$tmp/a_on_scaled_b.obj"
+expect "a map that names no mesh" 0 "mean error: 0" -- eval "$tmp/unnamed.txt" "$good" --target "$b"
 
 # The overlay (issue 32): written with the map, its checks in report.json, and `transfer mesh --exact` places it on B
 # with no folded triangle; damaged overlay tables are refused naming the file and line.
