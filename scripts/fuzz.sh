@@ -29,7 +29,12 @@ seed() {  # TARGET: fills BUILD/fuzz-seeds/TARGET
       printf '4 f0:0.6,0.2,0.2\nf1:0.25,0.25,0.5 0.2,0.3,0.5  # face and 3D point\nf7:0.0005,0.4995,0.5 2,2,2\n' \
         >"$dir/surface.txt"
       ;;
-    vertex_map) printf '# map\n0 1 0 0\n1 0.25 0.25 0.5\n1999 0 0 1  # last face\n' >"$dir/map.txt" ;;
+    vertex_map)
+      printf '# map\n0 1 0 0\n1 0.25 0.25 0.5\n1999 0 0 1  # last face\n' >"$dir/map.txt"
+      # the header lines naming the meshes, as read_as_fuzzed expects them (map_header.h)
+      printf '# source mesh: 3 vertices, 1 faces, connectivity fnv1a64:00000000000000a1\n# target mesh: 1000 vertices, 2000 faces, connectivity fnv1a64:0123456789abcdef\n0 1 0 0\n' \
+        >"$dir/named.txt"
+      ;;
     obj_uv)
       printf 'mtllib m.mtl\nv 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\n' \
         >"$dir/octahedron_uv.obj"
