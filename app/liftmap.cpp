@@ -313,7 +313,7 @@ liftmap::MeshOfMap mesh_of_map(const std::string& path, const liftmap::TriangleM
 int run_transfer_attributes(const TransferJob& job) {
   liftmap::refuse_overwriting_inputs(job.out_path, {job.map_path, job.onto_path, job.data_path});
   const liftmap::TriangleMesh onto = liftmap::read_mesh(job.onto_path);
-  const auto points = liftmap::read_map_file(job.map_path, {mesh_of_map(job.onto_path, onto), {}}).images;
+  const auto points = liftmap::read_map_file(job.map_path, mesh_of_map(job.onto_path, onto)).images;
   const Eigen::MatrixXd data = liftmap::read_attributes(job.data_path);
   if (data.rows() != onto.V.rows()) {
     throw liftmap::InvalidInputError(job.data_path + ": " + std::to_string(data.rows()) + " rows, but " +
@@ -338,9 +338,8 @@ PlacedMesh mesh_to_place(const TransferJob& job, const liftmap::TriangleMesh& on
         liftmap::read_overlay(job.map_path, source.V, source.F, onto.V, onto.F, {job.connectivity_path, job.onto_path});
     return {std::move(o.F), std::move(o.on_b), std::move(o.face_b)};
   }
-  auto points = liftmap::read_map_file(job.map_path,
-                                       {mesh_of_map(job.onto_path, onto), mesh_of_map(job.connectivity_path, source)})
-                    .images;
+  // Per source vertex: of the source only its vertex count matters (its faces may be any over those vertices).
+  auto points = liftmap::read_map_file(job.map_path, mesh_of_map(job.onto_path, onto)).images;
   if (points.size() != static_cast<size_t>(source.V.rows())) {
     throw liftmap::InvalidInputError(job.map_path + ": " + std::to_string(points.size()) + " lines, but " +
                                      job.connectivity_path + " has " + std::to_string(source.V.rows()) + " vertices");
@@ -459,9 +458,9 @@ int run_transfer_texture(TextureJob job) {
 
 int run_eval(const std::string& map_path, const std::string& truth_path, const std::string& target_path) {
   const liftmap::TriangleMesh target = liftmap::read_mesh(target_path);
-  const liftmap::MapFileMeshes meshes{mesh_of_map(target_path, target), {}};
-  const liftmap::MapFile map = liftmap::read_map_file(map_path, meshes);
-  const liftmap::MapFile truth = liftmap::read_map_file(truth_path, meshes);
+  const liftmap::MeshOfMap onto = mesh_of_map(target_path, target);
+  const liftmap::MapFile map = liftmap::read_map_file(map_path, onto);
+  const liftmap::MapFile truth = liftmap::read_map_file(truth_path, onto);
   // Compared per source vertex: the sources' vertices must be the same, not their faces.
   const bool sources_differ =
       map.meshes.source && truth.meshes.source && map.meshes.source->vertices != truth.meshes.source->vertices;

@@ -1,5 +1,6 @@
 #include "io/map_header.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 
@@ -55,9 +56,26 @@ bool read_map_header_line(const std::string& text, MapMeshes& meshes, const std:
   return false;
 }
 
-void require_map_meshes(const MapMeshes& recorded, const MapFileMeshes& given, const std::string& map_path) {
-  require_mesh(recorded.target, given.target, "target", map_path);
-  if (given.source) require_mesh(recorded.source, *given.source, "source", map_path);
+MapMeshes map_header_of_text(const std::string& text, const std::string& path) {
+  MapMeshes meshes;
+  for (const char* prefix : {kSourceLine, kTargetLine}) {
+    for (size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at + 1)) {
+      if (at > 0 && text[at - 1] != '\n') continue;  // not at the start of a line
+      const size_t end = text.find('\n', at);
+      const auto line_no = std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n') + 1;
+      read_map_header_line(text.substr(at, end == std::string::npos ? std::string::npos : end - at), meshes,
+                           path + ":" + std::to_string(line_no) + ": ");
+    }
+  }
+  return meshes;
+}
+
+void require_map_mesh(const MapMeshes& recorded, MapSide side, const MeshOfMap& mesh, const std::string& map_path) {
+  if (side == MapSide::kSource) {
+    require_mesh(recorded.source, mesh, "source", map_path);
+  } else {
+    require_mesh(recorded.target, mesh, "target", map_path);
+  }
 }
 
 }  // namespace liftmap

@@ -23,12 +23,6 @@ struct MeshOfMap {
   MeshFingerprint fingerprint;
 };
 
-/// The meshes a map file is applied to: its target, and its source where a command has it.
-struct MapFileMeshes {
-  MeshOfMap target;
-  std::optional<MeshOfMap> source;
-};
-
 /// Writes `# source mesh: <fingerprint>` and `# target mesh: <fingerprint>` for the meshes given.
 void write_map_header_lines(std::FILE* file, const MapMeshes& meshes);
 
@@ -38,9 +32,17 @@ void write_map_header_lines(std::FILE* file, const MapMeshes& meshes);
 /// \throw IoError naming `where` if it is one of them but not followed by a fingerprint, or names a mesh twice
 bool read_map_header_line(const std::string& text, MapMeshes& meshes, const std::string& where);
 
-/// Checks that the meshes a map file is applied to are those its header names (meshes it does not name, as in
-/// files of other tools, are not checked).
+/// The meshes named by the `# source mesh:` and `# target mesh:` lines anywhere in a text (read_map_header_line).
+/// \param path the file, for messages
+MapMeshes map_header_of_text(const std::string& text, const std::string& path);
+
+/// Which mesh of a map file: the one whose vertices its lines are, or the one its lines are points of.
+enum class MapSide { kSource, kTarget };
+
+/// Checks that a mesh a map file is applied to is the one its header names on that side (if it names one: files of
+/// other tools do not). Commands that use a map per source vertex need of the source only its vertex count, which
+/// they compare with the map's line count; the overlay's faces lie in faces of both meshes.
 /// \throw InvalidInputError (exit 4) naming both files and both fingerprints if the header names another mesh
-void require_map_meshes(const MapMeshes& recorded, const MapFileMeshes& given, const std::string& map_path);
+void require_map_mesh(const MapMeshes& recorded, MapSide side, const MeshOfMap& mesh, const std::string& map_path);
 
 }  // namespace liftmap

@@ -41,7 +41,7 @@ std::optional<MeshFingerprint> parse_mesh_fingerprint(const std::string& text) {
   MeshFingerprint fp;
   char hex[17] = {};
   int consumed = 0;
-  if (std::sscanf(text.c_str(), "%lld vertices, %lld faces, connectivity fnv1a64:%16[0-9a-f]%n", &fp.vertices,
+  if (std::sscanf(text.c_str(), "%lld vertices, %lld faces, connectivity fnv1a64:%16[0-9a-fA-F]%n", &fp.vertices,
                   &fp.faces, hex, &consumed) != 3 ||
       static_cast<size_t>(consumed) != text.size() || std::string(hex).size() != 16 || fp.vertices < 0 ||
       fp.faces < 0) {

@@ -24,7 +24,7 @@ MeshFingerprint mesh_fingerprint(Eigen::Index n_vertices, const Eigen::MatrixXi&
 /// "3000 vertices, 5996 faces, connectivity fnv1a64:0123456789abcdef": the text of a map file's header line.
 std::string to_string(const MeshFingerprint& fingerprint);
 
-/// The fingerprint of a text written by to_string; nullopt if `text` is not one.
+/// The fingerprint of a text written by to_string (hexadecimal digits in either case); nullopt if `text` is not one.
 std::optional<MeshFingerprint> parse_mesh_fingerprint(const std::string& text);
 
 }  // namespace liftmap

@@ -32,7 +32,7 @@ void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& 
 namespace {
 
 /// The lines of a map file; its header checked against `expected` (if not null) before the first map line.
-MapFile read_lines(std::istream& in, const std::string& path, int n_target_faces, const MapFileMeshes* expected) {
+MapFile read_lines(std::istream& in, const std::string& path, int n_target_faces, const MeshOfMap* target) {
   constexpr double kTol = BarycentricTolerance::kTolerance;
   MapFile map;
   std::vector<SurfacePoint>& images = map.images;
@@ -46,7 +46,7 @@ MapFile read_lines(std::istream& in, const std::string& path, int n_target_faces
     std::vector<std::string> t;
     for (std::string token; line >> token;) t.push_back(token);
     if (t.empty()) continue;
-    if (expected && images.empty()) require_map_meshes(map.meshes, *expected, path);
+    if (target && images.empty()) require_map_mesh(map.meshes, MapSide::kTarget, *target, path);
     if (t.size() != 4) {
       throw IoError(where + "expected 'face b0 b1 b2', found " + std::to_string(t.size()) + " fields");
     }
@@ -83,6 +83,7 @@ MapFile read_lines(std::istream& in, const std::string& path, int n_target_faces
   }
   if (in.bad()) throw IoError(path + ": read error");
   if (images.empty()) throw IoError(path + ": no map lines ('face b0 b1 b2')");
+  if (target) require_map_mesh(map.meshes, MapSide::kTarget, *target, path);  // lines after the first map line
   return map;
 }
 
@@ -97,13 +98,13 @@ std::vector<SurfacePoint> read_vertex_map(std::istream& in, const std::string& n
   return read_lines(in, name, n_target_faces, nullptr).images;
 }
 
-MapFile read_map_file(const std::string& path, const MapFileMeshes& meshes) {
+MapFile read_map_file(const std::string& path, const MeshOfMap& target) {
   std::ifstream in = open_input_file(path, "map file");
-  return read_map_file(in, path, meshes);
+  return read_map_file(in, path, target);
 }
 
-MapFile read_map_file(std::istream& in, const std::string& name, const MapFileMeshes& meshes) {
-  return read_lines(in, name, static_cast<int>(meshes.target.fingerprint.faces), &meshes);
+MapFile read_map_file(std::istream& in, const std::string& name, const MeshOfMap& target) {
+  return read_lines(in, name, static_cast<int>(target.fingerprint.faces), &target);
 }
 
 }  // namespace liftmap

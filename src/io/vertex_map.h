@@ -40,13 +40,14 @@ std::vector<SurfacePoint> read_vertex_map(const std::string& path, int n_target_
 /// read_vertex_map from a stream; `name` stands for the file in messages.
 std::vector<SurfacePoint> read_vertex_map(std::istream& in, const std::string& name, int n_target_faces);
 
-/// read_vertex_map, which also reads the meshes the header names and checks them, before the first map line,
-/// against the meshes the map is applied to (a header without them, as in files of other tools, is not checked).
-/// \throw as read_vertex_map with n_target_faces = meshes.target.fingerprint.faces, as read_map_header_line and as
-///        require_map_meshes
-MapFile read_map_file(const std::string& path, const MapFileMeshes& meshes);
+/// read_vertex_map, which also reads the meshes the header names and checks the target against the mesh the map is
+/// applied to, before the first map line and again at the end (a file without those lines, as of other tools, is
+/// not checked).
+/// \throw as read_vertex_map with n_target_faces = target.fingerprint.faces, as read_map_header_line and as
+///        require_map_mesh
+MapFile read_map_file(const std::string& path, const MeshOfMap& target);
 
 /// read_map_file from a stream; `name` stands for the file in messages.
-MapFile read_map_file(std::istream& in, const std::string& name, const MapFileMeshes& meshes);
+MapFile read_map_file(std::istream& in, const std::string& name, const MeshOfMap& target);
 
 }  // namespace liftmap

@@ -50,17 +50,6 @@ SurfacePoint face_point(const Eigen::MatrixXd& T, Eigen::Index i, Eigen::Index c
   return SurfacePoint::in_face(FaceId(f), clamp_barycentric(b));
 }
 
-/// The meshes named by the `#` lines at the start of a table (read_map_header_line).
-MapMeshes header_meshes(const std::string& table, const std::string& path) {
-  MapMeshes meshes;
-  std::istringstream lines(table);
-  std::string text;
-  for (int line_no = 1; std::getline(lines, text) && text.rfind('#', 0) == 0; ++line_no) {
-    read_map_header_line(text, meshes, path + ":" + std::to_string(line_no) + ": ");
-  }
-  return meshes;
-}
-
 }  // namespace
 
 std::array<std::string, 2> overlay_table_paths(const std::string& obj_path) {
@@ -114,10 +103,9 @@ Overlay read_overlay_texts(const OverlayTexts& texts, const std::string& obj_pat
                            const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB,
                            const std::array<std::string, 2>& mesh_paths) {
   const auto [points_path, faces_path] = overlay_table_paths(obj_path);
-  require_map_meshes(
-      header_meshes(texts.points, points_path),
-      {{mesh_paths[1], mesh_fingerprint(VB.rows(), FB)}, MeshOfMap{mesh_paths[0], mesh_fingerprint(VA.rows(), FA)}},
-      points_path);
+  const MapMeshes named = map_header_of_text(texts.points, points_path);
+  require_map_mesh(named, MapSide::kSource, {mesh_paths[0], mesh_fingerprint(VA.rows(), FA)}, points_path);
+  require_map_mesh(named, MapSide::kTarget, {mesh_paths[1], mesh_fingerprint(VB.rows(), FB)}, points_path);
   const TriangleMesh mesh = read_mesh_data(texts.obj, obj_path);
   std::vector<int> point_lines, face_lines;
   std::istringstream points(texts.points), faces(texts.faces);

@@ -32,7 +32,7 @@ void write_overlay(const std::string& obj_path, const Overlay& overlay, const Ma
 /// \throw IoError (exit 3) naming the file and line for a missing or malformed file, or tables whose row count
 ///        differs from the OBJ's; InvalidInputError (exit 4) naming the file and line for a face index that is
 ///        not one of the input mesh's or barycentric coordinates that are not a point of their face, and naming
-///        both files if the points table's header names other meshes than A and B (require_map_meshes).
+///        both files if the points table names other meshes than A and B (require_map_mesh).
 Overlay read_overlay(const std::string& obj_path, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
                      const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB,
                      const std::array<std::string, 2>& mesh_paths = {"A", "B"});

@@ -83,6 +83,7 @@ Eigen::MatrixXd read_attributes(std::istream& in, const std::string& path, std::
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
+    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
     if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
     std::istringstream s(line);
     std::vector<double> row;

@@ -49,9 +49,8 @@ expect "transfer mesh" 0 "^liftmap: 0 of 1620 transferred triangles are folded" 
   transfer mesh "$good" --onto "$b" --connectivity "$a" -o "$tmp/a_on_b.obj"
 require "folded list written" grep -q "0 of 1620" "$tmp/a_on_b.obj.folded.txt"
 python3 "$(dirname "$0")/make_variant.py" invert "$a" "$tmp/inverted.off"
-grep -v -e '^# source mesh: ' -e '^# target mesh: ' "$good" >"$tmp/unnamed.txt"  # as a map of another tool
 expect "transfer mesh, reversed faces" 0 "^liftmap: 1620 of 1620 transferred triangles are folded" -- \
-  transfer mesh "$tmp/unnamed.txt" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/inv_on_b.obj"
+  transfer mesh "$good" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/inv_on_b.obj"
 require "folded list holds every face" test "$(grep -c -v '^#' "$tmp/inv_on_b.obj.folded.txt")" = 1620
 
 # Map files and the overlay name the meshes they were made for (vertex and face counts, a hash of the faces): a map
@@ -66,8 +65,12 @@ not_b="made for a target mesh with 162 vertices, 320 faces, connectivity fnv1a64
 expect "transfer mesh onto another mesh" 4 "^liftmap: $good: $not_b" -- \
   transfer mesh "$good" --onto "$tmp/cow.off" --connectivity "$a" -o "$tmp/other.obj"
 require "nothing written onto another mesh" test ! -e "$tmp/other.obj"
-expect "transfer mesh from another mesh" 4 "^liftmap: $good: made for a source mesh with 812 vertices, .* but $tmp/inverted.off has 812 vertices, 1620 faces, connectivity fnv1a64:[0-9a-f]{16} \(the same counts, other faces" -- \
-  transfer mesh "$good" --onto "$b" --connectivity "$tmp/inverted.off" -o "$tmp/other.obj"
+expect "transfer mesh from another mesh" 4 "^liftmap: $good: 812 lines, but $tmp/cow.off has 2904 vertices" -- \
+  transfer mesh "$good" --onto "$b" --connectivity "$tmp/cow.off" -o "$tmp/other.obj"
+grep -v -e '^# source mesh: ' -e '^# target mesh: ' "$good" >"$tmp/unnamed.txt"  # as a map of another tool
+cat "$tmp/unnamed.txt" <(echo "# target mesh: 1 vertices, 0 faces, connectivity fnv1a64:0000000000000000") >"$tmp/late.txt"
+expect "a mesh line after the map lines" 4 "^liftmap: $tmp/late.txt: made for a target mesh with 1 vertices" -- \
+  eval "$tmp/late.txt" "$good" --target "$b"
 seq 1 162 >"$tmp/on_b.txt"
 expect "transfer attributes onto another mesh" 4 "^liftmap: $tmp/m/A_to_B.txt: made for a target mesh with 162 vertices" -- \
   transfer attributes "$tmp/m/A_to_B.txt" --onto "$tmp/cow.off" --data "$tmp/on_b.txt" -o "$tmp/other.txt"
@@ -77,6 +80,12 @@ expect "eval of maps from two meshes" 4 "^liftmap: $good: 812 map lines from a m
   eval "$good" "$tmp/from_other.txt" --target "$b"
 expect "transfer mesh --exact onto another mesh" 4 "^liftmap: $tmp/m/overlay_points.txt: $not_b" -- \
   transfer mesh --exact "$tmp/m/overlay.obj" --onto "$tmp/cow.off" --connectivity "$a" -o "$tmp/other.obj"
+mkdir -p "$tmp/blank"
+cp "$tmp/m/overlay.obj" "$tmp/m/overlay_faces.txt" "$tmp/blank/"
+{ echo; cat "$tmp/m/overlay_points.txt"; } >"$tmp/blank/overlay_points.txt"
+expect "transfer mesh --exact, the table's lines after a blank line" 4 \
+  "^liftmap: $tmp/blank/overlay_points.txt: made for a source mesh with 812 vertices, .* but $b has 162" -- \
+  transfer mesh --exact "$tmp/blank/overlay.obj" --onto "$b" --connectivity "$b" -o "$tmp/other.obj"
 python3 "$(dirname "$0")/make_variant.py" scale "$b" "$tmp/b_scaled.off" 3
 expect "transfer mesh onto another pose of B" 0 "^liftmap: 0 of 1620 transferred triangles are folded" -- \
   transfer mesh "$good" --onto "$tmp/b_scaled.off" --connectivity "$a" -o "$tmp/a_on_scaled_b.obj"

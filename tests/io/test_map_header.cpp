@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
 #include <sstream>
 
 #include "core/errors.h"
@@ -43,23 +45,44 @@ TEST(MeshFingerprint, TextRoundTrip) {
   }
 }
 
-/// A map file of two points of faces 0 and 1 after `header`, read against `meshes`.
-MapFile read_with(const std::string& header, const MapFileMeshes& meshes) {
-  std::istringstream in(header + "0 1 0 0\n1 0 1 0\n");
-  return read_map_file(in, "m.txt", meshes);
+/// A map file of two points of faces 0 and 1 after `header` and before `footer`, read against `target`.
+MapFile read_with(const std::string& header, const MeshOfMap& target, const std::string& footer = "") {
+  std::istringstream in(header + "0 1 0 0\n1 0 1 0\n" + footer);
+  return read_map_file(in, "m.txt", target);
 }
 
-TEST(ReadMapFile, ChecksTheMeshesItsHeaderNames) {
+TEST(ReadMapFile, ChecksTheTargetItsHeaderNames) {
   const MeshFingerprint a = mesh_fingerprint(4, square());
   const MeshFingerprint other{4, 2, a.connectivity ^ 1};
   const std::string header = "# map\n# source mesh: " + to_string(other) + "\n# target mesh: " + to_string(a) + "\n";
-  const MapFile map = read_with(header, {{"t.off", a}, {}});
+  const MapFile map = read_with(header, {"t.off", a});
   ASSERT_EQ(map.images.size(), 2U);
   EXPECT_EQ(map.meshes.source, other);
   EXPECT_EQ(map.meshes.target, a);
-  EXPECT_NO_THROW(read_with(header, {{"t.off", a}, MeshOfMap{"s.off", other}}));
+  const MeshFingerprint bigger{40, 76, 5};
   try {
-    read_with(header, {{"t.off", a}, MeshOfMap{"s.off", a}});
+    read_with(header, {"t.off", bigger});
+    FAIL() << "another target mesh accepted";
+  } catch (const InvalidInputError& e) {
+    EXPECT_EQ(std::string(e.what()), "m.txt: made for a target mesh with " + to_string(a) + ", but t.off has " +
+                                         to_string(bigger) + ": the map does not belong to this mesh");
+  }
+  EXPECT_THROW(read_with("", {"t.off", bigger}, "# target mesh: " + to_string(a) + "\n"), InvalidInputError)
+      << "a line after the map lines is checked too";
+  std::string upper = to_string(a);
+  std::transform(upper.end() - 16, upper.end(), upper.end() - 16, [](unsigned char c) { return std::toupper(c); });
+  EXPECT_EQ(read_with("# target mesh: " + upper + "\n", {"t.off", a}).meshes.target, a) << "upper-case digits";
+}
+
+TEST(RequireMapMesh, NamesTheSideAndBothFingerprints) {
+  const MeshFingerprint a = mesh_fingerprint(4, square());
+  const MeshFingerprint other{4, 2, a.connectivity ^ 1};
+  const MapMeshes named{other, a};
+  EXPECT_NO_THROW(require_map_mesh(named, MapSide::kSource, {"s.off", other}, "m.txt"));
+  EXPECT_NO_THROW(require_map_mesh(named, MapSide::kTarget, {"t.off", a}, "m.txt"));
+  EXPECT_NO_THROW(require_map_mesh({}, MapSide::kTarget, {"t.off", other}, "m.txt")) << "a file that names none";
+  try {
+    require_map_mesh(named, MapSide::kSource, {"s.off", a}, "m.txt");
     FAIL() << "another source mesh accepted";
   } catch (const InvalidInputError& e) {
     EXPECT_EQ(std::string(e.what()), "m.txt: made for a source mesh with " + to_string(other) + ", but s.off has " +
@@ -67,28 +90,37 @@ TEST(ReadMapFile, ChecksTheMeshesItsHeaderNames) {
                                          " (the same counts, other faces: a re-meshed or re-ordered mesh): the map "
                                          "does not belong to this mesh");
   }
-  const MeshFingerprint bigger{40, 76, 5};
+}
+
+TEST(MapHeaderOfText, FindsTheLinesAnywhereAtTheStartOfALine) {
+  const MeshFingerprint a = mesh_fingerprint(4, square()), b{9, 14, 77};
+  const std::string text = "\n# table\n1 2 3\n# target mesh: " + to_string(b) + "\r\n4 5 6 # source mesh: x\n" +
+                           "# source mesh: " + to_string(a);
+  const MapMeshes named = map_header_of_text(text, "p.txt");
+  EXPECT_EQ(named.source, a);
+  EXPECT_EQ(named.target, b);
+  EXPECT_FALSE(map_header_of_text("1 2\n# other\n", "p.txt").source);
   try {
-    read_with(header, {{"t.off", bigger}, {}});
-    FAIL() << "another target mesh accepted";
-  } catch (const InvalidInputError& e) {
-    EXPECT_EQ(std::string(e.what()), "m.txt: made for a target mesh with " + to_string(a) + ", but t.off has " +
-                                         to_string(bigger) + ": the map does not belong to this mesh");
+    map_header_of_text("1 2\n\n# source mesh: 3 vertices\n", "p.txt");
+    FAIL() << "a malformed line accepted";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "p.txt:3: '3 vertices' is not a mesh fingerprint ('V vertices, F faces, connectivity fnv1a64:X')");
   }
 }
 
 TEST(ReadMapFile, AcceptsFilesThatNameNoMesh) {
   // Maps of other tools, and of liftmap before its files named their meshes.
-  EXPECT_EQ(read_with("# another tool\n", {{"t.off", mesh_fingerprint(4, square())}, {}}).images.size(), 2U);
-  EXPECT_EQ(read_with("", {{"t.off", mesh_fingerprint(4, square())}, {}}).images.size(), 2U);
+  EXPECT_EQ(read_with("# another tool\n", {"t.off", mesh_fingerprint(4, square())}).images.size(), 2U);
+  EXPECT_EQ(read_with("", {"t.off", mesh_fingerprint(4, square())}).images.size(), 2U);
 }
 
 TEST(ReadMapFile, RejectsMalformedOrRepeatedMeshLines) {
-  const MapFileMeshes meshes{{"t.off", mesh_fingerprint(4, square())}, {}};
-  const std::string fp = to_string(meshes.target.fingerprint);
+  const MeshOfMap target{"t.off", mesh_fingerprint(4, square())};
+  const std::string fp = to_string(target.fingerprint);
   const auto error_of = [&](const std::string& header) -> std::string {
     try {
-      read_with(header, meshes);
+      read_with(header, target);
     } catch (const IoError& e) {
       return e.what();
     }
@@ -98,14 +130,14 @@ TEST(ReadMapFile, RejectsMalformedOrRepeatedMeshLines) {
             "m.txt:1: '4 vertices' is not a mesh fingerprint ('V vertices, F faces, connectivity fnv1a64:X')");
   EXPECT_EQ(error_of("# target mesh: " + fp + "\n# target mesh: " + fp + "\n"),
             "m.txt:2: a second '# target mesh' line");
-  EXPECT_EQ(read_with("# target mesh: " + fp + " \r\n", meshes).images.size(), 2U) << "CRLF and trailing blanks";
+  EXPECT_EQ(read_with("# target mesh: " + fp + " \r\n", target).images.size(), 2U) << "CRLF and trailing blanks";
 }
 
 TEST(ReadMapFile, WriteReadRoundTripNamesBothMeshes) {
   const std::string path = ::testing::TempDir() + "liftmap_test_map_header.txt";
   const MeshFingerprint s{10, 16, 123}, t = mesh_fingerprint(4, square());
   write_vertex_map(path, {SurfacePoint::in_face(FaceId(1), {0.2, 0.3, 0.5})}, "two\nlines", {s, t});
-  const MapFile map = read_map_file(path, {{"t.off", t}, MeshOfMap{"s.off", s}});
+  const MapFile map = read_map_file(path, {"t.off", t});
   EXPECT_EQ(map.meshes.source, s);
   EXPECT_EQ(map.meshes.target, t);
   ASSERT_EQ(map.images.size(), 1U);
