@@ -2,7 +2,6 @@
 /// Map files: per source vertex, its image as a point of a face of the target mesh (README, "Command line").
 
 #include <iosfwd>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,9 +16,11 @@ struct MapFile {
   MapMeshes meshes;
 };
 
-/// Writes a vertex map: `#` header lines (`header`, then write_map_header_lines of `meshes`), then per source vertex
-/// `face b0 b1 b2` (face of the target mesh, barycentric coordinates in the order of that face's vertices, full double
-/// precision). \param images per source vertex, a face point of the target \throw IoError if the file cannot be written
+/// Writes a vertex map: `#` header lines (`header`, then write_map_header_lines of `meshes`), then per source
+/// vertex `face b0 b1 b2` (face of the target mesh, barycentric coordinates in the order of that face's vertices,
+/// full double precision).
+/// \param images per source vertex, a face point of the target
+/// \throw IoError if the file cannot be written
 void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& images, const std::string& header,
                       const MapMeshes& meshes = {});
 
