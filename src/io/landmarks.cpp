@@ -14,6 +14,7 @@
 #include "core/errors.h"
 #include "core/nearest_surface_point.h"
 #include "io/input_file.h"
+#include "io/line_reader.h"
 #include "io/output_file.h"
 
 namespace liftmap {
@@ -322,7 +323,7 @@ Landmarks read_pairs(std::istream& in, const std::string& path, LandmarkMesh& a,
   int line_no = 0;
   while (std::getline(in, text)) {
     ++line_no;
-    if (line_no == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // a UTF-8 byte-order mark
+    if (line_no == 1) skip_byte_order_mark(text);
     for (char c : text) {
       const auto u = static_cast<unsigned char>(c);
       if (u == 0 || (u < 32 && c != '\t' && c != '\r')) fail(path, line_no, "not a text line (binary data?)");

@@ -11,6 +11,11 @@ namespace liftmap {
 /// A UTF-8 byte-order mark: skipped before a text format's content.
 inline constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
+/// Removes a byte-order mark from the start of `first_line` (the first line of a file read line by line).
+inline void skip_byte_order_mark(std::string& first_line) {
+  if (first_line.rfind(kByteOrderMark, 0) == 0) first_line.erase(0, kByteOrderMark.size());
+}
+
 /// The bytes of a file.
 /// \param what what the file should be, for the message on a directory ("mesh file", "material file")
 /// \throw IoError naming the file if it is a directory or cannot be opened or read

@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "io/input_file.h"
+#include "io/line_reader.h"
 #include "io/output_file.h"
 #include "io/text_line.h"
 
@@ -31,7 +32,8 @@ void write_vertex_map(const std::string& path, const std::vector<SurfacePoint>& 
 
 namespace {
 
-/// The lines of a map file; its header checked against `expected` (if not null) before the first map line.
+/// The lines of a map file; the target its header names checked against `target` (if not null) before the first
+/// map line and again at the end.
 MapFile read_lines(std::istream& in, const std::string& path, int n_target_faces, const MeshOfMap* target) {
   constexpr double kTol = BarycentricTolerance::kTolerance;
   MapFile map;
@@ -39,7 +41,7 @@ MapFile read_lines(std::istream& in, const std::string& path, int n_target_faces
   std::string text;
   for (int line_no = 1; std::getline(in, text); ++line_no) {
     const std::string where = path + ":" + std::to_string(line_no) + ": ";
-    if (line_no == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // a UTF-8 byte-order mark
+    if (line_no == 1) skip_byte_order_mark(text);
     if (read_map_header_line(text, map.meshes, where)) continue;
     if (const size_t hash = text.find('#'); hash != std::string::npos) text.resize(hash);
     std::istringstream line(text);

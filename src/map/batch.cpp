@@ -25,6 +25,7 @@
 #include "core/errors.h"
 #include "core/seconds_since.h"
 #include "io/input_file.h"
+#include "io/line_reader.h"
 #include "io/output_file.h"
 
 namespace liftmap {
@@ -289,7 +290,7 @@ std::vector<BatchPair> read_manifest(const std::string& path, const MapArguments
   std::vector<BatchPair> pairs;
   std::string text;
   for (int line = 1; std::getline(in, text); ++line) {
-    if (line == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+    if (line == 1) skip_byte_order_mark(text);
     if (!text.empty() && text.back() == '\r') text.pop_back();
     const size_t first = text.find_first_not_of(" \t");
     if (first == std::string::npos || text[first] == '#') continue;

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "io/input_file.h"
+#include "io/line_reader.h"
 #include "io/output_file.h"
 #include "io/text_line.h"
 #include "map/check_overlay.h"
@@ -83,7 +84,7 @@ Eigen::MatrixXd read_attributes(std::istream& in, const std::string& path, std::
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
-    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
+    if (line_no == 1) skip_byte_order_mark(line);
     if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
     std::istringstream s(line);
     std::vector<double> row;
