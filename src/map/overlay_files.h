@@ -2,9 +2,9 @@
 /// Overlay files (README, "Output folder"): `overlay.obj` and its two tables.
 ///
 /// - `overlay.obj`: the overlay as a mesh on A: `v` = position on A, `f` = triangles (1-based, counter-clockwise).
-/// - `overlay_points.txt`: `#` lines naming A and B (map_header.h), then per `v` line of the OBJ, `faceA a0 a1 a2 faceB
-/// b0 b1 b2`: the vertex as a point of
-///   input A (0-based face, barycentric coordinates in the order of that face's vertices) and as a point of B.
+/// - `overlay_points.txt`: `#` lines naming A and B (map_header.h), then per `v` line of the OBJ,
+///   `faceA a0 a1 a2 faceB b0 b1 b2`: the vertex as a point of input A (0-based face, barycentric coordinates in the
+///   order of that face's vertices) and as a point of B.
 /// - `overlay_faces.txt`: per `f` line, `faceA faceB`: the input faces of A and of B containing the triangle.
 /// The two tables are named after the OBJ: `<stem>_points.txt` and `<stem>_faces.txt` in the same folder.
 

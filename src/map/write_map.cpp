@@ -222,25 +222,24 @@ std::string in_folder(const std::string& dir, const std::string& name) {
 }
 
 /// A_to_B.txt, B_to_A.txt and their .ijv matrices: faces and barycentric coordinates of the inputs as given.
-void write_input_maps(const std::string& dir, const MapResult& map, const MapInputs& in) {
+/// \param a_onto_b input_meshes(in)
+void write_input_maps(const std::string& dir, const MapResult& map, const MapInputs& in, const MapMeshes& a_onto_b) {
   const std::vector<SurfacePoint> a_to_b = images_in_given_order(map.a_to_b, in.reversed_b);
   const std::vector<SurfacePoint> b_to_a = images_in_given_order(map.b_to_a, in.reversed_a);
-  const Eigen::MatrixXi FA = faces_as_given(in.a, in.reversed_a);
-  const Eigen::MatrixXi FB = faces_as_given(in.b, in.reversed_b);
-  const MapMeshes a_onto_b = input_meshes(in);
   write_vertex_map(in_folder(dir, "A_to_B.txt"), a_to_b, "liftmap map of A = " + in.name_a + " onto B = " + in.name_b,
                    a_onto_b);
   write_vertex_map(in_folder(dir, "B_to_A.txt"), b_to_a, "liftmap map of B = " + in.name_b + " onto A = " + in.name_a,
                    {a_onto_b.target, a_onto_b.source});
-  write_barycentric_matrix(in_folder(dir, "A_to_B.ijv"), a_to_b, FB);
-  write_barycentric_matrix(in_folder(dir, "B_to_A.ijv"), b_to_a, FA);
+  write_barycentric_matrix(in_folder(dir, "A_to_B.ijv"), a_to_b, faces_as_given(in.b, in.reversed_b));
+  write_barycentric_matrix(in_folder(dir, "B_to_A.ijv"), b_to_a, faces_as_given(in.a, in.reversed_a));
 }
 
 }  // namespace
 
 void write_map_folder(const std::string& dir, const MapResult& map, const MapInputs& in, const nlohmann::json& report,
                       const std::function<void(const std::string&, const std::string&)>& progress) {
-  write_input_maps(dir, map, in);
+  const MapMeshes a_onto_b = input_meshes(in);
+  write_input_maps(dir, map, in, a_onto_b);
   write_cut(dir, map.cut, map.flattening.Phi, map.flattening.Psi);
   write_vertex_map(in_folder(dir, "cut_A_to_B.txt"), map.cut_a_to_b,
                    "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
@@ -253,7 +252,7 @@ void write_map_folder(const std::string& dir, const MapResult& map, const MapInp
   write_distortion_histogram(in_folder(dir, "distortion.png"), map);
   write_textured_meshes(dir, map);
   if (map.overlay.F.rows() > 0) {
-    write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in), input_meshes(in));
+    write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in), a_onto_b);
   }
   // Last: a folder with a report.json holds every file of this run.
   OutputFile file(in_folder(dir, "report.json"));
