@@ -384,15 +384,15 @@ bool step_state_2(const Setup& s, const State& z, const Eigen::VectorXd& dx, con
 /// merit(z1) - merit(z0) for merit = t f0 + barrier, computed term by term (as log ratios and differences) so
 /// that it stays accurate when t f0 is large; both states must be feasible.
 double merit_difference(const Setup& s, const State& z0, const State& z1, double t) {
-  double d = 0;
-#pragma omp parallel for schedule(static) reduction(+ : d) if (s.n_faces > kParallelFaces)
-  for (int j = 0; j < s.n_faces; ++j) {
+  double d = sum_over_faces<double>(s.n_faces, [&](int j) {
     const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
     BarrierArgs a0, a1;
     barrier_args(local_vars(s, z0, j), fs.cs, fs.sn, fs.ghost(), fs.bound, s.settings, a0);
     barrier_args(local_vars(s, z1, j), fs.cs, fs.sn, fs.ghost(), fs.bound, s.settings, a1);
-    for (int k = 0; k < a0.n; ++k) d -= std::log(a1.g[static_cast<size_t>(k)] / a0.g[static_cast<size_t>(k)]);
-  }
+    double dj = 0;
+    for (int k = 0; k < a0.n; ++k) dj -= std::log(a1.g[static_cast<size_t>(k)] / a0.g[static_cast<size_t>(k)]);
+    return dj;
+  });
   d += t * ((z1.T[0] - z0.T[0]) + (z1.T[1] - z0.T[1]));
   if (!s.settings.p_inf) {  // -log of the objective cones' slacks 2 T_m / t
     for (size_t m = 0; m < 2; ++m) d -= std::log(z1.T[m] / z0.T[m]);
@@ -541,22 +541,19 @@ void BarrierSolver::start_auxiliaries(const Eigen::MatrixXd& X0) {
 // e_j for p = 2, the T_m for p = inf; S_start: the meshes' sums S_m at the start); 0 if the barrier does not push
 // against f0 there.
 double BarrierSolver::centring_balance(const std::array<double, 2>& S_start) const {
-  double gf_gphi = 0, gf_gf = 0, barrier_t = 0;
-#pragma omp parallel for schedule(static) reduction(+ : gf_gphi, gf_gf, barrier_t) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
+  // Per face: (gf_gphi, gf_gf, barrier_t).
+  const Eigen::Array3d sums = sum_over_faces<Eigen::Array3d>(nf_, [&](int j) {
     const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
-    if (fs.ghost()) continue;
+    if (fs.ghost()) return Eigen::Array3d::Zero().eval();
     Vec7 g;
     Mat7 H;
     barrier_derivatives(local_vars(s_, z_, j), fs.cs, fs.sn, false, 0.0, st_, g, H);
-    if (st_.p_inf) {
-      barrier_t += g(kT);
-    } else {
-      const double df = fs.w * z_.e(j) / std::sqrt(S_start[static_cast<size_t>(fs.mesh)]);
-      gf_gphi += df * g(kE);
-      gf_gf += df * df;
-    }
-  }
+    if (st_.p_inf) return Eigen::Array3d(0, 0, g(kT));
+    const double df = fs.w * z_.e(j) / std::sqrt(S_start[static_cast<size_t>(fs.mesh)]);
+    return Eigen::Array3d(df * g(kE), df * df, 0);
+  });
+  double gf_gphi = sums(0), gf_gf = sums(1);
+  const double barrier_t = sums(2);
   if (st_.p_inf) {
     gf_gphi = barrier_t;
     gf_gf = 2;

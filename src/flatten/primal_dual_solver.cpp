@@ -572,12 +572,14 @@ bool PrimalDualSolver::eliminate_face(int j, double& gap) {
 double PrimalDualSolver::scale_and_eliminate() {
   double gap = 0;
   if (!st_.p_inf) scale_objective_cones(gap);
-  int elimination_ok = 1;
-#pragma omp parallel for schedule(static) reduction(+ : gap) reduction(min : elimination_ok) if (nf_ > kParallelFaces)
-  for (int j = 0; j < nf_; ++j) {
-    if (!eliminate_face(j, gap)) elimination_ok = 0;
-  }
-  if (elimination_ok == 0) throw PipelineError("convex subproblem: an auxiliary block is singular");
+  // Per face: (its cones' s^T z, 1 if its auxiliaries' block was eliminated, else 0).
+  const Eigen::Array2d faces = sum_over_faces<Eigen::Array2d>(nf_, [&](int j) {
+    double face_gap = 0;
+    const bool ok = eliminate_face(j, face_gap);
+    return Eigen::Array2d(face_gap, ok ? 1 : 0);
+  });
+  gap += faces(0);
+  if (faces(1) < nf_) throw PipelineError("convex subproblem: an auxiliary block is singular");
   if (st_.p_inf) {
     h_tt_ = {0, 0};
     for (int j = 0; j < nf_; ++j) {

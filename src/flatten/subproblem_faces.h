@@ -10,6 +10,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
+#include <type_traits>
 #include <vector>
 
 #include "core/seconds_since.h"
@@ -44,6 +45,20 @@ struct Settings {
   bool h_max = false;
   bool p_inf = false;
 };
+
+/// The sum of term(j) over the faces j = 0 .. n - 1: the terms on the threads, their sum in face order, so that the
+/// result is the same at any thread count (an OpenMP reduction adds each thread's partial sum, which rounds
+/// differently with the number of threads). T: double or a fixed-size Eigen array.
+template <class T, class Term>
+T sum_over_faces(int n, Term&& term) {
+  std::vector<T> terms(static_cast<size_t>(n));
+#pragma omp parallel for schedule(static) if (n > kParallelFaces)
+  for (int j = 0; j < n; ++j) terms[static_cast<size_t>(j)] = term(j);
+  T sum = T{};
+  if constexpr (!std::is_arithmetic_v<T>) sum.setZero();
+  for (const T& t : terms) sum += t;
+  return sum;
+}
 
 /// The per-face data of one subproblem, built once per call.
 struct Setup {
