@@ -10,16 +10,35 @@ namespace {
 
 /// Fraction of a portal kept free at a blocked vertex: the path goes around it at this relative distance.
 constexpr double kClearance = 0.05;
+/// ... and at least at this fraction of the shortest edge of the input face the portal lies in. Without that floor
+/// the clearance compounded: each straightening step passes around the vertex at 5% of the portal that the previous
+/// step left (the edge from its own crossing to the vertex), and eight steps put cut vertices 1e-12 from a
+/// landmark, whose disk faces could not be flattened (cow to triceratops with random landmarks; docs/algorithm.md,
+/// "Clearance at a blocked vertex", for the measured choice of 1%).
+constexpr double kMinClearance = 1e-2;
 /// Crossings closer than this fraction of their edge to an unblocked end are snapped onto it (no slivers).
 constexpr double kSnap = 0.02;
 
 double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+/// The shortest edge of the input face that holds the refined face left of `h` (input vertices keep their ids in
+/// the refinement).
+double shortest_input_edge(const RefinedMesh& r, const Mesh& input, HalfedgeId h) {
+  const FaceId f = r.mesh.face(h);
+  if (!f.valid()) return 0;
+  const auto v = input.face_vertices(FaceId(r.input_face[static_cast<size_t>(f.idx)]));
+  const auto p = [&](int k) -> const Eigen::Vector3d& {
+    return r.positions[static_cast<size_t>(v[static_cast<size_t>(k)].idx)];
+  };
+  return std::min({(p(1) - p(0)).norm(), (p(2) - p(1)).norm(), (p(0) - p(2)).norm()});
+}
 
 /// An edge of the strip that the path crosses: from `right` (a vertex of the old path) to `left`.
 struct Portal {
   int right = -1, left = -1;  ///< refined vertex ids
   Eigen::Vector2d r, l;       ///< unfolded positions; `l` pulled toward `r` when `left` is blocked
   bool left_blocked = false;
+  double open = 1;  ///< the fraction of the edge from `right` that the path may cross (`l` is there)
 };
 
 /// A point of the taut path: a vertex, or the point at parameter t from `right` to `left` on a strip edge.
@@ -34,8 +53,8 @@ struct Item {
 
 /// The strip of faces left of `path` (v0 -> vm), unfolded into the plane: its portals and the unfolded end.
 /// Returns false if the strip cannot be built.
-bool left_strip(const RefinedMesh& r, const std::vector<int>& path, const std::function<bool(int)>& blocked,
-                std::vector<Portal>& portals, Eigen::Vector2d& end) {
+bool left_strip(const RefinedMesh& r, const Mesh& input, const std::vector<int>& path,
+                const std::function<bool(int)>& blocked, std::vector<Portal>& portals, Eigen::Vector2d& end) {
   const Mesh& mesh = r.mesh;
   const auto pos = [&](int v) -> const Eigen::Vector3d& { return r.positions[static_cast<size_t>(v)]; };
   const size_t m = path.size() - 1;
@@ -93,7 +112,13 @@ bool left_strip(const RefinedMesh& r, const std::vector<int>& path, const std::f
     portal.r = at(rv);
     portal.l = at(lv);
     portal.left_blocked = blocked(lv);
-    if (portal.left_blocked) portal.l = portal.r + (1.0 - kClearance) * (portal.l - portal.r);
+    if (portal.left_blocked) {
+      const double length = (portal.l - portal.r).norm();
+      const double kept_free =
+          std::min(length, std::max(kClearance * length, kMinClearance * shortest_input_edge(r, input, g)));
+      portal.open = length > 0 ? (length - kept_free) / length : 0.0;
+      portal.l = portal.r + portal.open * (portal.l - portal.r);
+    }
     portals.push_back(portal);
     // Cross g: the next face clockwise around rv is (lv, rv, c), counter-clockwise.
     if (mesh.is_boundary(Mesh::twin(g))) return false;
@@ -191,7 +216,8 @@ std::vector<Item> funnel(const std::vector<int>& path, const std::vector<Portal>
       it.vertex = p.id;
       return it;
     }
-    return edge_item(portals[static_cast<size_t>(c.first - 1)], 1.0 - kClearance);
+    const Portal& q = portals[static_cast<size_t>(c.first - 1)];
+    return edge_item(q, q.open);
   };
   add(corner_item(corners[0]));
   for (size_t k = 0; k + 1 < corners.size(); ++k) {
@@ -203,7 +229,7 @@ std::vector<Item> funnel(const std::vector<int>& path, const std::vector<Portal>
       const double den = cross2(d1, d2);
       double u = std::abs(den) > 0 ? cross2(d1, a - q.r) / den : 0.0;
       u = std::clamp(u, 0.0, 1.0);
-      add(edge_item(q, q.left_blocked ? u * (1.0 - kClearance) : u));
+      add(edge_item(q, u * q.open));
     }
     add(corner_item(corners[k + 1]));
   }
@@ -223,11 +249,11 @@ double items_length(const RefinedMesh& r, const std::vector<Item>& items) {
 }
 
 /// The taut path on one side, or empty if it cannot be computed.
-std::vector<Item> taut_side(const RefinedMesh& r, const std::vector<int>& path,
+std::vector<Item> taut_side(const RefinedMesh& r, const Mesh& input, const std::vector<int>& path,
                             const std::function<bool(int)>& blocked) {
   std::vector<Portal> portals;
   Eigen::Vector2d end;
-  if (!left_strip(r, path, blocked, portals, end)) return {};
+  if (!left_strip(r, input, path, blocked, portals, end)) return {};
   return funnel(path, portals, end);
 }
 
@@ -245,7 +271,7 @@ std::vector<int> shorten_path(RefinedMesh& refined, const Mesh& input, const std
   for (int side = 0; side < 2; ++side) {
     std::vector<int> p = path;
     if (side == 1) std::reverse(p.begin(), p.end());
-    std::vector<Item> items = taut_side(refined, p, blocked);
+    std::vector<Item> items = taut_side(refined, input, p, blocked);
     if (items.size() < 2) continue;
     if (side == 1) std::reverse(items.begin(), items.end());
     const double l = items_length(refined, items);
