@@ -7,8 +7,10 @@ For every configuration it runs `liftmap map`, reads report.json and checks:
   exit 0; the start's smallest face area over the mean above 1e-10; the final flattenings' max distortion at most
   1000; the whole map under 60 s; the first outer iteration at most 3 times the median of the others.
 It prints a markdown table (worst first by the first check that fails) and exits 1 if any configuration fails.
+With --no-timing (the ctest `map_sweep`) the two checks on time are listed in the table but fail nothing: a test
+does not depend on the machine's speed or load; `make bench` keeps them.
 
-usage: map_sweep.py BUILD_DIR OUT_DIR [--limit N] [--table FILE] [--budget SECONDS] [--map-args "ARGS"]
+usage: map_sweep.py BUILD_DIR OUT_DIR [--limit N] [--table FILE] [--budget SECONDS] [--map-args "ARGS"] [--no-timing]
 --map-args adds options to every `liftmap map` (e.g. "--start-relaxation 0" for the start without its relaxation).
 With --budget, no configuration starts once the budget is spent; those not run are listed as such.
 """
@@ -128,6 +130,10 @@ def run(liftmap, name, a, b, lm, out, extra=()):
 
 
 def failures(row):
+    return quality_failures(row) + (timing_failures(row) if row["exit"] == 0 else [])
+
+
+def quality_failures(row):
     if row["exit"] != 0:
         return [f"exit {row['exit']}"]
     f = []
@@ -135,6 +141,11 @@ def failures(row):
         f.append("start squeezed")
     if not row["final_max_distortion"] <= 1000:
         f.append("max distortion > 1000")
+    return f
+
+
+def timing_failures(row):
+    f = []
     if not row["seconds"] < 60:
         f.append("over 60 s")
     if row["first_s"] > 3 * row["median_s"]:
@@ -166,6 +177,7 @@ def main():
     ap.add_argument("--table", help="also write the table to this file")
     ap.add_argument("--budget", type=float, default=0, help="seconds after which no configuration starts (0: none)")
     ap.add_argument("--map-args", default="", help="options added to every liftmap map")
+    ap.add_argument("--no-timing", action="store_true", help="the checks on time fail nothing (listed only)")
     args = ap.parse_args()
     liftmap = os.path.join(args.build, "app", "liftmap")
     configs = configurations(args.out)
@@ -182,8 +194,8 @@ def main():
         print(f"[{i + 1}/{len(configs)}] {row['name']}: {row['seconds']:.1f} s, "
               f"{', '.join(failures(row)) or 'ok'}", flush=True)
     text = table(rows)
-    bad = [r for r in rows if failures(r)]
-    summary = (f"\n{len(rows)} configurations, {len(bad)} failing a check, "
+    bad = [r for r in rows if (quality_failures(r) if args.no_timing else failures(r))]
+    summary = (f"\n{len(rows)} configurations, {len(bad)} failing a check{' other than time' if args.no_timing else ''}, "
                f"{sum(1 for r in rows if r['exit'] != 0)} maps failing; slowest map "
                f"{max(r['seconds'] for r in rows):.1f} s\n")
     if skipped:
