@@ -40,6 +40,22 @@ require() {
   fi
 }
 
+# same_pair NAME DIR REF: the same files, byte for byte but report.json, which is equal without its wall times.
+same_pair() {
+  require "$1: the files of liftmap map" diff <(ls -A "$2") <(ls -A "$3")
+  for f in $(ls -A "$3"); do
+    [ "$f" = report.json ] && continue
+    require "$1: $f identical" cmp -s "$2/$f" "$3/$f"
+  done
+  require "$1: report.json equal but for wall times" python3 -c '
+import json, sys
+def strip(x):
+    if isinstance(x, dict):
+        return {k: strip(v) for k, v in x.items() if k not in ("seconds", "run")}
+    return [strip(v) for v in x] if isinstance(x, list) else x
+assert strip(json.load(open(sys.argv[1]))) == strip(json.load(open(sys.argv[2])))' "$2/report.json" "$3/report.json"
+}
+
 finish() {
   echo "$(basename "$0"): $checks checks, $failures failed"
   [ "$failures" = 0 ]
