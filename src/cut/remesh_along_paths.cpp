@@ -10,10 +10,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
+#include <map>
 #include <string>
+#include <unordered_map>
 
 #include "core/errors.h"
+#include "cut/edge_key.h"
 
 namespace liftmap {
 
@@ -213,6 +217,31 @@ int straighten_within_faces(const RefinedMesh& refined, const Mesh& input, std::
   return dropped;
 }
 
+/// The cyclic order of the paths around each vertex where two or more of them meet (their ends: paths touch only
+/// there), as path indices counter-clockwise from the smallest: vertex -> order.
+std::map<int, std::vector<int>> path_rotations(const Mesh& mesh, const std::vector<std::vector<int>>& paths) {
+  std::unordered_map<std::uint64_t, int> path_of_edge;
+  std::map<int, int> ends;  // vertex -> number of paths ending there
+  for (size_t e = 0; e < paths.size(); ++e) {
+    const auto& p = paths[e];
+    for (size_t i = 0; i + 1 < p.size(); ++i) path_of_edge[edge_key(p[i], p[i + 1])] = static_cast<int>(e);
+    if (p.empty()) continue;
+    ++ends[p.front()];
+    ++ends[p.back()];
+  }
+  std::map<int, std::vector<int>> rotations;
+  for (const auto& [v, count] : ends) {
+    if (count < 2) continue;
+    std::vector<int>& order = rotations[v];
+    mesh.for_each_outgoing(VertexId(v), [&](HalfedgeId h) {
+      const auto it = path_of_edge.find(edge_key(v, mesh.head(h).idx));
+      if (it != path_of_edge.end()) order.push_back(it->second);
+    });
+    std::rotate(order.begin(), std::min_element(order.begin(), order.end()), order.end());
+  }
+  return rotations;
+}
+
 /// remesh_along_paths without its fallback.
 RemeshStats rebuild(RefinedMesh& refined, const Mesh& input, std::vector<std::vector<int>>& paths, bool straighten) {
   const int n_input = input.n_vertices();
@@ -295,6 +324,15 @@ RemeshStats rebuild(RefinedMesh& refined, const Mesh& input, std::vector<std::ve
                             " is not an edge after re-triangulation");
     }
   }
+  // Straightened chords from a vertex inside an input face can leave it in another order than the traced paths
+  // (seen with surface-point landmarks and a clearance of 5% of the input edge): the two meshes' cuts would no
+  // longer correspond. Renumbered ends keep their order only if the embedding of the tree is unchanged.
+  if (straighten) {
+    std::map<int, std::vector<int>> before;
+    for (auto& [v, order] : path_rotations(refined.mesh, paths)) before[new_id[static_cast<size_t>(v)]] = order;
+    if (before != path_rotations(out.mesh, renumbered))
+      throw PipelineError("cut: straightened paths meet a landmark in another order");
+  }
   refined = std::move(out);
   paths = std::move(renumbered);
   return stats;
@@ -308,7 +346,8 @@ RemeshStats remesh_along_paths(RefinedMesh& refined, const Mesh& input, std::vec
     try {
       return rebuild(refined, input, paths, true);
     } catch (const PipelineError&) {
-      // Rounding let two straightened paths touch in some face: keep the paths as traced.
+      // Rounding let two straightened paths touch in some face, or meet a landmark in another order: keep the
+      // paths as traced.
     }
   }
   try {

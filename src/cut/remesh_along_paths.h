@@ -15,17 +15,20 @@ struct RemeshStats {
   int straightened_vertices = 0;      ///< path vertices inside an input face dropped: the path runs straight across it
   int dropped_vertices = 0;           ///< refined vertices on no path (left by earlier re-triangulations), removed
   int remeshed_faces = 0;             ///< input faces re-triangulated (the others are the input face itself)
-  bool straightening_failed = false;  ///< straightened paths touched in a face (rounding): kept as traced instead
+  bool straightening_failed = false;  ///< straightened paths touched in a face (rounding) or met a landmark in another
+                                      ///< cyclic order than traced: kept as traced instead
   bool kept_as_traced = false;  ///< a face could not be re-triangulated (two vertices at one point): nothing changed
   int exact_faces = 0;          ///< of those, faces triangulated again with exact constructions after rounding failed
 };
 
 /// If `straighten`, straightens each path across the input faces first (a path vertex inside an input face whose
 /// path neighbours lie on that face is dropped, as long as the path keeps two edges; if rounding makes two straightened
-/// paths touch, the paths are kept as traced). Rebuilds `refined` so that it holds only the input vertices and the
-/// vertices of `paths`, and triangulates each input face that holds a path vertex as the constrained Delaunay
-/// triangulation (in the plane of the face) of its three corners, the path vertices on its sides and inside it, with
-/// every path segment that crosses it as a constraint. Vertices keep their positions and their exact provenance
+/// paths touch, or the paths leave a vertex where they meet in another cyclic order than traced, which would change
+/// the tree's embedding on this mesh only, the paths are kept as traced). Rebuilds `refined` so that it holds only the
+/// input vertices and the vertices of `paths`, and triangulates each input face that holds a path vertex as the
+/// constrained Delaunay triangulation (in the plane of the face) of its three corners, the path vertices on its sides
+/// and inside it, with every path segment that crosses it as a constraint. Vertices keep their positions and their
+/// exact provenance
 /// (`RefinedMesh::on_input`); every refined face lies inside one input face, so the refined surface is still the input
 /// surface. Replaces the ear clipping of the repeated insertions during tracing, whose caps and slivers carried the
 /// flattenings' largest distortions, and removes the vertices of abandoned intermediate paths. \param refined a
