@@ -275,11 +275,17 @@ Located exact_locate(const std::array<Point, 3>& t, const Point& p) {
   return {};
 }
 
+/// The double nearest an exact number. CGAL::to_double of a lazy exact number rounds its interval approximation,
+/// which it trusts to a relative precision of only 1e-5 (triceratops to man with 10 random landmarks: a corner's
+/// weights in the two faces were 1e-9 off, its points on the two disks 5e-11 of the mesh apart, and the map failed
+/// its overlay check); the exact value is rounded once here.
+double rounded(const Kernel::FT& x) { return CGAL::to_double(x.exact()); }
+
 /// Barycentric coordinates of an exact point from exact sub-areas, each rounded once.
 std::array<double, 3> exact_weights(const std::array<Point, 3>& t, const Point& p) {
   const Kernel::FT total = CGAL::area(t[0], t[1], t[2]);
   std::array<double, 3> w{};
-  for (size_t k = 0; k < 3; ++k) w[k] = CGAL::to_double(CGAL::area(p, t[(k + 1) % 3], t[(k + 2) % 3]) / total);
+  for (size_t k = 0; k < 3; ++k) w[k] = rounded(CGAL::area(p, t[(k + 1) % 3], t[(k + 2) % 3]) / total);
   return w;
 }
 
@@ -323,7 +329,7 @@ std::vector<Corner> exact_cell(const std::array<Eigen::Vector2d, 3>& a, const st
                    exact_locate(eb, p),
                    exact_weights(ea, p),
                    exact_weights(eb, p),
-                   {CGAL::to_double(p.x()), CGAL::to_double(p.y())}});
+                   {rounded(p.x()), rounded(p.y())}});
   for (Corner& k : out) {
     // Exact coordinates on an edge or at a corner keep their zeros.
     k.wm = snap(k.m, k.wm);

@@ -19,6 +19,35 @@ std::string segment_name(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return "the segment from " + format_point(a) + " to " + format_point(b);
 }
 
+/// Barycentric coordinates of z = (zx, zy) in the triangle c, computed in T, from sub-triangle areas. A point that
+/// rounding put outside (a negative coordinate) is moved to the nearest point of the edge it fell across; clamping
+/// the coordinate to 0 and renormalising would move it along a sliver by its length times the overshoot over its
+/// height (8e-12 of the mesh, seen on triceratops to man).
+template <class T>
+std::array<double, 3> weights_in_triangle(const std::array<Eigen::Vector2d, 3>& c, T zx, T zy) {
+  std::array<T, 3> w{};
+  for (size_t k = 0; k < 3; ++k) {
+    const Eigen::Vector2d& u = c[(k + 1) % 3];
+    const Eigen::Vector2d& v = c[(k + 2) % 3];
+    w[k] = (T(u.x()) - zx) * (T(v.y()) - zy) - (T(u.y()) - zy) * (T(v.x()) - zx);
+  }
+  const auto k = static_cast<size_t>(std::min_element(w.begin(), w.end()) - w.begin());
+  if (w[k] < 0) {  // onto the edge opposite corner k, from corner k + 1 to corner k + 2
+    const Eigen::Vector2d& u = c[(k + 1) % 3];
+    const Eigen::Vector2d& v = c[(k + 2) % 3];
+    const T dx = T(v.x()) - u.x(), dy = T(v.y()) - u.y();
+    const T len2 = dx * dx + dy * dy;
+    const T t = len2 > 0 ? std::clamp(((zx - u.x()) * dx + (zy - u.y()) * dy) / len2, T(0), T(1)) : T(0);
+    std::array<double, 3> out{};
+    out[(k + 1) % 3] = static_cast<double>(1 - t);
+    out[(k + 2) % 3] = static_cast<double>(t);
+    return out;
+  }
+  const T sum = w[0] + w[1] + w[2];
+  if (!(sum > 0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
+  return {static_cast<double>(w[0] / sum), static_cast<double>(w[1] / sum), static_cast<double>(w[2] / sum)};
+}
+
 }  // namespace
 
 PathLifter::PathLifter(const Mesh& mesh, const Eigen::MatrixXd& Psi) : mesh_(mesh) {
@@ -54,20 +83,12 @@ FaceId PathLifter::face_of_edge(HalfedgeId h) const {
 }
 
 SurfacePoint PathLifter::face_point(FaceId f, const Eigen::Vector2d& z) const {
+  return SurfacePoint::in_face(f, weights_in_triangle(corners(f), z.x(), z.y()));
+}
+
+std::array<Eigen::Vector2d, 3> PathLifter::corners(FaceId f) const {
   const auto fv = mesh_.face_vertices(f);
-  const Eigen::Vector2d& p0 = position(fv[0]);
-  const Eigen::Vector2d& p1 = position(fv[1]);
-  const Eigen::Vector2d& p2 = position(fv[2]);
-  // Sub-triangle areas; z was located inside exactly, so negatives are rounding and are clamped.
-  std::array<double, 3> w = {std::max(0.0, cross(p1 - z, p2 - z)), std::max(0.0, cross(p2 - z, p0 - z)),
-                             std::max(0.0, cross(p0 - z, p1 - z))};
-  const double sum = w[0] + w[1] + w[2];
-  if (sum > 0) {
-    for (double& x : w) x /= sum;
-  } else {
-    w = {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  }
-  return SurfacePoint::in_face(f, w);
+  return {position(fv[0]), position(fv[1]), position(fv[2])};
 }
 
 SurfacePoint PathLifter::refine_coordinates(const SurfacePoint& p, long double zx, long double zy) const {
@@ -81,18 +102,7 @@ SurfacePoint PathLifter::refine_coordinates(const SurfacePoint& p, long double z
     return SurfacePoint::on_edge(p.edge, std::clamp(static_cast<double>(t), 0.0, 1.0));
   }
   if (p.kind != SurfacePoint::Kind::kFace) return p;
-  const auto fv = mesh_.face_vertices(p.face);
-  std::array<L, 3> w{};
-  L sum = 0;
-  for (size_t k = 0; k < 3; ++k) {
-    const Eigen::Vector2d& u = position(fv[(k + 1) % 3]);
-    const Eigen::Vector2d& v = position(fv[(k + 2) % 3]);
-    w[k] = std::max(L(0), (L(u.x()) - zx) * (L(v.y()) - zy) - (L(u.y()) - zy) * (L(v.x()) - zx));
-    sum += w[k];
-  }
-  if (!(sum > 0)) return p;
-  return SurfacePoint::in_face(
-      p.face, {static_cast<double>(w[0] / sum), static_cast<double>(w[1] / sum), static_cast<double>(w[2] / sum)});
+  return SurfacePoint::in_face(p.face, weights_in_triangle(corners(p.face), zx, zy));
 }
 
 SurfacePoint PathLifter::edge_point(HalfedgeId h, const Eigen::Vector2d& z) const {

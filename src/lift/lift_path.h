@@ -2,6 +2,7 @@
 /// Path lifting through a locally injective flattening (paper §3.2, Algorithm 1).
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "core/mesh.h"
@@ -69,7 +70,7 @@ class PathLifter {
   [[nodiscard]] SurfacePoint refine(const SurfacePoint& hint, const Eigen::Vector2d& z) const;
 
   /// The face point of `f` whose image under Psi is closest to `z`, by barycentric coordinates computed in
-  /// floating point and clamped to the face (exact for z inside Psi(f) up to rounding).
+  /// floating point; a z that rounding put just outside is moved onto the nearest point of the edge it fell across.
   [[nodiscard]] SurfacePoint face_point(FaceId f, const Eigen::Vector2d& z) const;
 
   /// The coordinates of a point of the element of `p` (a point found by lifting z) recomputed from z given in
@@ -77,6 +78,9 @@ class PathLifter {
   /// returned as it is). Flattened faces can be far smaller than the flattening, so z's rounding to double, at
   /// the scale of the whole flattening, would dominate their coordinates.
   [[nodiscard]] SurfacePoint refine_coordinates(const SurfacePoint& p, long double zx, long double zy) const;
+
+  /// Psi at the corners of face f.
+  [[nodiscard]] std::array<Eigen::Vector2d, 3> corners(FaceId f) const;
 
   /// Psi at vertex v.
   [[nodiscard]] const Eigen::Vector2d& position(VertexId v) const { return psi_[static_cast<size_t>(v.idx)]; }

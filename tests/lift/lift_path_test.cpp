@@ -152,6 +152,28 @@ TEST(LiftPath, NotLocallyInjectiveThrows) {
   EXPECT_THROW(PathLifter(Mesh(grid.F, 25), grid.X), PipelineError);
 }
 
+// A point that rounding put just outside a sliver goes to the nearest point of the edge it fell across. Clamping
+// its negative coordinate to 0 and renormalising moved it along the sliver by its length times the overshoot over
+// the sliver's height: here 2e-4 for an overshoot of 1e-12 (on real maps, 8e-12 of the mesh, enough to fail the
+// overlay check).
+TEST(LiftPath, FacePointOutsideASliverGoesToTheNearestEdgePoint) {
+  Eigen::MatrixXd X(3, 2);
+  X << 0, 0, 1, 0, 0.5, 1e-9;
+  const Eigen::MatrixXi F = (Eigen::MatrixXi(1, 3) << 0, 1, 2).finished();
+  const Mesh mesh(F, 3);
+  const PathLifter lifter(mesh, X);
+  for (const double below : {1e-15, 1e-12, 1e-10}) {
+    const Vector2d z(0.3, -below);
+    const SurfacePoint p = lifter.face_point(FaceId(0), z);
+    EXPECT_LT((interpolate(mesh, X, p).transpose() - Vector2d(0.3, 0)).norm(), 1e-15) << "overshoot " << below;
+    const SurfacePoint q = lifter.refine_coordinates(p, 0.3L, -static_cast<long double>(below));
+    EXPECT_LT((interpolate(mesh, X, q).transpose() - Vector2d(0.3, 0)).norm(), 1e-15) << "overshoot " << below;
+  }
+  // Inside, the coordinates are the barycentric ones.
+  const SurfacePoint inside = lifter.face_point(FaceId(0), Vector2d(0.5, 0.5e-9));
+  EXPECT_LT((interpolate(mesh, X, inside).transpose() - Vector2d(0.5, 0.5e-9)).norm(), 1e-16);
+}
+
 // Paper Figure 3: a spiral strip winding 2.3 times around the origin. A polyline following the middle circle of
 // the strip lifts onto the right sheet, although its end point has three preimages under Psi.
 TEST(LiftPath, OverlappingSpiralStaysOnItsSheet) {
