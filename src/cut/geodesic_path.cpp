@@ -14,8 +14,8 @@ constexpr double kClearance = 0.05;
 /// the clearance compounded: each straightening step passes around the vertex at 5% of the portal that the previous
 /// step left (the edge from its own crossing to the vertex), and eight steps put cut vertices 1e-12 from a
 /// landmark, whose disk faces could not be flattened (cow to triceratops with random landmarks; docs/algorithm.md,
-/// "Clearance at a blocked vertex", for the measured choice of 1%).
-constexpr double kMinClearance = 1e-2;
+/// "Clearance at a blocked vertex", for the measured choice of 5%).
+constexpr double kMinClearance = 5e-2;
 /// Crossings closer than this fraction of their edge to an unblocked end are snapped onto it (no slivers).
 constexpr double kSnap = 0.02;
 

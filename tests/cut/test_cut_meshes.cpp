@@ -81,7 +81,7 @@ std::vector<SurfacePoint> surface_landmarks(const TriangleMesh& m, int k, std::m
   return out;
 }
 
-// A path that passes a landmark or another path keeps clear of it by at least 1% of its input face's shortest edge.
+// A path that passes a landmark or another path keeps clear of it by at least 5% of its input face's shortest edge.
 // The clearance used to be 5% of the edge left by the previous straightening step, which compounded: on cow to
 // triceratops with these 12 landmarks three paths passed landmark 1 (vertex 273 of the cow) 1e-12 away, the disk
 // had faces of 1e-22 of the mean area, and the map failed (the Newton step of its first subproblem was not finite).
@@ -103,8 +103,8 @@ TEST(cut_meshes, PathsKeepClearOfBlockedVertices) {
     }
     return l;
   };
-  // Against the input's shortest edge: 6e-11 before, 7e-4 now (the pairing of the two sides' path vertices and
-  // the crossings near input vertices place points nearer each other than the clearance).
+  // Against the input's shortest edge: 6e-11 before the floor, 7e-4 with a floor of 1% (the pairing of the two sides'
+  // path vertices and the crossings near input vertices place points nearer each other than the clearance).
   EXPECT_GT(shortest_edge(r.a.V, r.a.F), 1e-4 * shortest_edge(ma.V, ma.F));
   EXPECT_GT(shortest_edge(r.b.V, r.b.F), 1e-4 * shortest_edge(mb.V, mb.F));
 }
