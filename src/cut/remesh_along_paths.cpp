@@ -230,8 +230,9 @@ std::map<int, std::vector<int>> path_rotations(const Mesh& mesh, const std::vect
     ++ends[p.back()];
   }
   std::map<int, std::vector<int>> rotations;
-  for (const auto& [v, count] : ends) {
+  for (const auto& [end, count] : ends) {
     if (count < 2) continue;
+    const int v = end;  // a copy: clang 14 (clang-tidy) cannot capture a structured binding in a lambda
     std::vector<int>& order = rotations[v];
     mesh.for_each_outgoing(VertexId(v), [&](HalfedgeId h) {
       const auto it = path_of_edge.find(edge_key(v, mesh.head(h).idx));
