@@ -28,11 +28,11 @@ struct RemeshStats {
 /// input vertices and the vertices of `paths`, and triangulates each input face that holds a path vertex as the
 /// constrained Delaunay triangulation (in the plane of the face) of its three corners, the path vertices on its sides
 /// and inside it, with every path segment that crosses it as a constraint. Vertices keep their positions and their
-/// exact provenance
-/// (`RefinedMesh::on_input`); every refined face lies inside one input face, so the refined surface is still the input
-/// surface. Replaces the ear clipping of the repeated insertions during tracing, whose caps and slivers carried the
-/// flattenings' largest distortions, and removes the vertices of abandoned intermediate paths. \param refined a
-/// refinement of `input` whose first `input.n_vertices()` vertices are the input vertices \param input the input mesh
+/// exact provenance (`RefinedMesh::on_input`); every refined face lies inside one input face, so the refined surface
+/// is still the input surface. Replaces the ear clipping of the repeated insertions during tracing, whose caps and
+/// slivers carried the flattenings' largest distortions, and removes the vertices of abandoned intermediate paths.
+/// \param refined a refinement of `input` whose first `input.n_vertices()` vertices are the input vertices
+/// \param input the input mesh
 /// \param paths per tree edge, refined vertex ids; renumbered in place to the new refined mesh
 /// \param straighten drop path vertices inside input faces (not after `equalize_paths`, whose paired vertex
 ///        counts it would change)

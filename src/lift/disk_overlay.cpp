@@ -276,9 +276,9 @@ Located exact_locate(const std::array<Point, 3>& t, const Point& p) {
 }
 
 /// The double nearest an exact number. CGAL::to_double of a lazy exact number rounds its interval approximation,
-/// which it trusts to a relative precision of only 1e-5 (triceratops to man with 10 random landmarks: a corner's
-/// weights in the two faces were 1e-9 off, its points on the two disks 5e-11 of the mesh apart, and the map failed
-/// its overlay check); the exact value is rounded once here.
+/// which it trusts to a relative precision of only 1e-5 (triceratops to man with 10 random landmarks: a corner's two
+/// copies were 1.2e-10 apart in the plane and 4.7e-11 of the mesh apart on the disks, and the map failed its overlay
+/// check); the exact value is rounded once here.
 double rounded(const Kernel::FT& x) { return CGAL::to_double(x.exact()); }
 
 /// Barycentric coordinates of an exact point from exact sub-areas, each rounded once.
