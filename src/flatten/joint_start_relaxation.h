@@ -23,10 +23,11 @@ namespace liftmap {
 /// Settings of relax_joint_start.
 struct JointStartRelaxationOptions {
   /// Projected Newton steps at most (0: off, the paper's start on the circle), and the relative decrease of E below
-  /// which a step ends the relaxation. Each disk's own unknowns are solved for from its own faces
-  /// (SymmetricDirichletTerm::own_solve), so two identical disks stay bitwise identical: a mesh mapped onto a copy of
-  /// itself scaled by a power of two is the identity to rounding.
-  SymmetricDirichletOptions newton{.max_iterations = 100, .relative_decrease = 1e-3};
+  /// which a full step ends the relaxation; a step shortened so that no face flips does not end it (a start with
+  /// crushed faces crawls through such steps before E falls by orders of magnitude). Each disk's own unknowns are
+  /// solved for from its own faces (SymmetricDirichletTerm::own_solve), so two identical disks stay bitwise
+  /// identical: a mesh mapped onto a copy of itself scaled by a power of two is the identity to rounding.
+  SymmetricDirichletOptions newton{.max_iterations = 300, .relative_decrease = 1e-3, .only_full_steps_stop = true};
   /// w_g: the ghost faces' weight, relative to the disks' faces. Their rest shape is their placement at the start
   /// (place_ghost_vertices); they hold no energy of the map and are re-placed before every subproblem.
   double ghost_weight = 0.1;

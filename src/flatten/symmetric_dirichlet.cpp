@@ -340,7 +340,8 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
     // Flip-free, then Armijo.
     const double slope = g.dot(dx);
     if (!(slope < 0)) break;
-    double step = std::min(1.0, flip_free_step(faces, res.U, step_x));
+    const double flip_limit = flip_free_step(faces, res.U, step_x);
+    double step = std::min(1.0, flip_limit);
     double e = std::numeric_limits<double>::infinity();
     Eigen::MatrixXd trial;
     for (int halvings = 0; halvings < 40; ++halvings, step *= 0.5) {
@@ -353,6 +354,8 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
     res.U = std::move(trial);
     res.energy = e;
     ++res.iterations;
+    const bool shortened_by_flips = flip_limit < 1;
+    if (options.only_full_steps_stop && shortened_by_flips) continue;
     if (before - e < options.relative_decrease * before) break;
   }
   return res;

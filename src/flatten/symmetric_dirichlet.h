@@ -14,6 +14,10 @@ namespace liftmap {
 struct SymmetricDirichletOptions {
   int max_iterations = 30;          ///< projected Newton steps at most
   double relative_decrease = 1e-2;  ///< stop once a step lowers the energy by less than this, relatively
+  /// Apply relative_decrease only to steps that the flip barrier did not shorten. A Newton step cut short before a
+  /// face flips lowers E little because that face is nearly crushed, not because E is near its minimum: such a
+  /// step does not end the minimisation (max_iterations still bounds it).
+  bool only_full_steps_stop = false;
 };
 
 /// Result of minimize_symmetric_dirichlet.
