@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # A start with crushed faces is relaxed until its symmetric Dirichlet energy has nearly stopped falling, not until
-# its first short step: camel to triceratops with 10 random landmarks starts at 1.4e3 (the camel's Tutte start
-# had a face at 3e-11 of the mean face area). Its relaxation used to stop after 19 steps at 1.0e3, because a step cut short
-# before a face flips lowered the energy by less than 1e-3; the outer loop then crawled for all 10 of its
+# its first short step: camel to triceratops with 10 random landmarks starts at 1.4e3 (the camel's Tutte start had a
+# face at 3e-11 of the mean face area). Its relaxation used to stop after 19 steps at 1.0e3, because a step cut
+# short before a face flips lowered the energy by less than 1e-3; the outer loop then crawled for all 10 of its
 # iterations (13.94 -> 12.86, not converged). Relaxed until its full steps stall, the map converges in 2.
 set -u
 liftmap="$1"
