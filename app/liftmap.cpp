@@ -29,6 +29,7 @@
 #include "io/read_obj_with_uv.h"
 #include "io/vertex_map.h"
 #include "io/write_mesh.h"
+#include "keep_freed_memory.h"
 #include "map/bake_texture.h"
 #include "map/batch.h"
 #include "map/map_arguments.h"
@@ -596,6 +597,7 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   liftmap_app::run_with_passive_openmp_waits(argv);
+  liftmap_app::keep_freed_memory();
   try {
     // The executable owns its process: OpenBLAS's pool (pthreads build only) at one thread during factorisations.
     liftmap::SparseCholesky::limit_openblas_pool(true);
