@@ -2,7 +2,7 @@
 
 #include <omp.h>
 #include <Eigen/Geometry>
-#include <Eigen/SparseLU>
+#include <Eigen/KLUSupport>
 
 #include <algorithm>
 #include <array>
@@ -103,9 +103,10 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
   }
   std::vector<Eigen::MatrixXd> result(weights.size(), U);
   if (m == 0) return result;
-  // The Laplacian of one set of weights, solved into result[s]. Every set has the same sparsity pattern, so each
-  // thread analyses it once (COLAMD depends on the pattern only: the embeddings are the same on any thread count).
-  const auto solve_set = [&](size_t s, Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu, bool analyze) {
+  // The Laplacian of one set of weights, solved into result[s] by SuiteSparse's KLU (sparse LU, partial pivoting).
+  // Every set has the same sparsity pattern, so each thread analyses it once (KLU's ordering depends on the pattern
+  // only: the embeddings are the same on any thread count).
+  const auto solve_set = [&](size_t s, Eigen::KLU<Eigen::SparseMatrix<double>>& lu, bool analyze) {
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(2 * corners.size());
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, 2);
@@ -132,14 +133,14 @@ std::vector<Eigen::MatrixXd> tutte_embeddings(const Mesh& mesh, const Eigen::Mat
       if (u >= 0) result[s].row(v) = X.row(u);
     }
   };
-  // Two threads share the sets (a squeezed disk has about ten, each an LU factorisation: Eigen's own, which calls
-  // no BLAS, so two can run at once); an exception on either is rethrown after both have finished.
+  // Two threads share the sets (a squeezed disk has about ten, each an LU factorisation: KLU's, which calls no BLAS,
+  // so two can run at once); an exception on either is rethrown after both have finished.
   const int threads = weights.size() > 1 ? std::min(2, omp_get_max_threads()) : 1;
   std::array<std::exception_ptr, 2> failed;
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    Eigen::KLU<Eigen::SparseMatrix<double>> lu;
     try {
       for (size_t s = static_cast<size_t>(t); s < weights.size(); s += static_cast<size_t>(nt)) {
         solve_set(s, lu, s == static_cast<size_t>(t));
