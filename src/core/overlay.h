@@ -26,6 +26,11 @@ struct Overlay {
   std::vector<SurfacePoint> on_b;  ///< #Vo: as a face point of input B
   Eigen::MatrixXi F;               ///< #Fo by 3 triangles, counter-clockwise on A and on B
   Eigen::VectorXi face_a, face_b;  ///< #Fo: the input face of A and of B containing each triangle
+  /// #Fo, or empty: per triangle, the fraction of its face of A (of B) below which its signed area there is
+  /// rounding, not a sign. Its corners were computed in the flattenings, so their coordinates in the face carry the
+  /// flattening's rounding magnified by how small the face is there (overlay_of_map). Empty: the rounding of
+  /// the coordinates alone (OverlayCheck::kRoundingArea).
+  Eigen::VectorXd rounding_a, rounding_b;
 };
 
 /// Barycentric coordinates of overlay triangle `t`'s three corners in its own input face (face_a(t) on A,

@@ -35,8 +35,9 @@ Eigen::Vector3d area_vector(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
 OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA,
                            const Eigen::MatrixXd& VB, const Eigen::MatrixXi& FB) {
   OverlayCheck c;
-  auto one_side = [&](const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Side side, double& total_error,
-                      double& face_error, int& uncovered, int& flipped, int& degenerate) {
+  auto one_side = [&](const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Side side, const Eigen::VectorXd& rounding,
+                      double& total_error, double& face_error, int& uncovered, int& flipped, int& degenerate) {
+    const bool per_triangle = rounding.size() == overlay.F.rows();
     Eigen::VectorXd covered = Eigen::VectorXd::Zero(F.rows());
     Eigen::VectorXi count = Eigen::VectorXi::Zero(F.rows());
     Eigen::VectorXd face_area(F.rows());
@@ -49,8 +50,9 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
       const Eigen::Vector3d nf = frame.area_vector();
       const double signed_area = n.dot(nf.normalized());
       // Cells far thinner than rounding (two maps' edges that nearly coincide) have no reliable sign.
-      if (!(signed_area > -OverlayCheck::kRoundingArea * nf.norm())) ++flipped;
-      if (std::abs(signed_area) <= OverlayCheck::kRoundingArea * nf.norm()) ++degenerate;
+      const double tolerance = (per_triangle ? rounding(t) : OverlayCheck::kRoundingArea) * nf.norm();
+      if (!(signed_area > -tolerance)) ++flipped;
+      if (std::abs(signed_area) <= tolerance) ++degenerate;
       covered(f) += signed_area;
       ++count(f);
     }
@@ -65,8 +67,10 @@ OverlayCheck check_overlay(const Overlay& overlay, const Eigen::MatrixXd& VA, co
       face_error = std::max(face_error, std::abs(covered(f) - face_area(f)) / mean);
     total_error = std::abs(sum - total) / total;
   };
-  one_side(VA, FA, Side::kA, c.area_error_a, c.face_area_error_a, c.uncovered_faces_a, c.flipped_a, c.degenerate_a);
-  one_side(VB, FB, Side::kB, c.area_error_b, c.face_area_error_b, c.uncovered_faces_b, c.flipped_b, c.degenerate_b);
+  one_side(VA, FA, Side::kA, overlay.rounding_a, c.area_error_a, c.face_area_error_a, c.uncovered_faces_a, c.flipped_a,
+           c.degenerate_a);
+  one_side(VB, FB, Side::kB, overlay.rounding_b, c.area_error_b, c.face_area_error_b, c.uncovered_faces_b, c.flipped_b,
+           c.degenerate_b);
   return c;
 }
 

@@ -16,13 +16,14 @@ struct OverlayCheck {
   double face_area_error_b = 0;  ///< the same on B
   int uncovered_faces_a = 0;     ///< faces of A that hold no overlay triangle
   int uncovered_faces_b = 0;
-  int flipped_a = 0;     ///< triangles whose signed area on A, against their face's normal, is below -kRoundingArea
-                         ///< times the face's area
+  int flipped_a = 0;     ///< triangles whose signed area on A, against their face's normal, is below -r times the
+                         ///< face's area, r the triangle's Overlay::rounding_a (kRoundingArea if the overlay has none)
   int flipped_b = 0;     ///< the same on B
-  int degenerate_a = 0;  ///< triangles whose area on A is within kRoundingArea of the face's area of zero: cells
-                         ///< where edges of the two meshes nearly coincide, thinner than double precision shows
+  int degenerate_a = 0;  ///< triangles whose area on A is within r of the face's area of zero: cells where edges of
+                         ///< the two meshes nearly coincide, thinner than the precision of their corners shows
   int degenerate_b = 0;  ///< the same on B
-  /// Areas below this fraction of their face's are rounding: their sign is not meaningful.
+  /// Areas below this fraction of their face's are rounding of the face's own coordinates: their sign is not
+  /// meaningful. A cell computed in a flattening can be less precise (Overlay::rounding_a), never more.
   static constexpr double kRoundingArea = 1e-12;
 };
 

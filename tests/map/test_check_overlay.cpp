@@ -57,6 +57,51 @@ TEST(CheckOverlay, ExactTilingHasNoErrorNoFlipAndNoGap) {
   EXPECT_EQ(check_overlay(reversed, oct.V, oct.F, oct.V, oct.F).flipped_a, 1);
 }
 
+/// o with one more triangle in face 0 on both sides, (c1, c0, p) for p = (0.7 - d/2, 0.3 - d/2, d): clockwise, its
+/// signed area -d times the face's.
+Overlay with_flipped_sliver(Overlay o, const Eigen::MatrixXi& F, double d) {
+  const auto p = static_cast<int>(o.on_a.size());
+  o.on_a.push_back(SurfacePoint::in_face(FaceId(0), {0.7 - d / 2, 0.3 - d / 2, d}));
+  o.on_b = o.on_a;
+  const Eigen::Index t = o.F.rows();
+  o.F.conservativeResize(t + 1, 3);
+  o.F.row(t) << F(0, 1), F(0, 0), p;
+  o.face_a.conservativeResize(t + 1);
+  o.face_a(t) = 0;
+  o.face_b = o.face_a;
+  return o;
+}
+
+// A cell's sign is judged against the precision of its corners: an overlay computed in flattenings says, per
+// triangle, what fraction of its face is rounding there (Overlay::rounding_a); without it, kRoundingArea.
+TEST(CheckOverlay, FlippedCellsAreJudgedAgainstTheirOwnRounding) {
+  const TriangleMesh oct = read_mesh(testing::test_data("good/octahedron.off"));
+  const Overlay base = split_overlay(oct.V, oct.F);
+  const Overlay sliver = with_flipped_sliver(base, oct.F, 3e-12);  // beyond kRoundingArea
+  OverlayCheck c = check_overlay(sliver, oct.V, oct.F, oct.V, oct.F);
+  EXPECT_EQ(c.flipped_a, 1);
+  EXPECT_EQ(c.flipped_b, 1);
+
+  Overlay imprecise = sliver;  // corners known to 1e-11 of their faces: the sliver's sign is rounding
+  imprecise.rounding_a = Eigen::VectorXd::Constant(imprecise.F.rows(), 1e-11);
+  imprecise.rounding_b = imprecise.rounding_a;
+  c = check_overlay(imprecise, oct.V, oct.F, oct.V, oct.F);
+  EXPECT_EQ(c.flipped_a + c.flipped_b, 0);
+  EXPECT_EQ(c.degenerate_a, 1);
+  EXPECT_EQ(c.degenerate_b, 1);
+
+  Overlay folded = with_flipped_sliver(base, oct.F, 1e-9);  // a flip larger than the rounding still counts
+  folded.rounding_a = Eigen::VectorXd::Constant(folded.F.rows(), 1e-11);
+  folded.rounding_b = folded.rounding_a;
+  c = check_overlay(folded, oct.V, oct.F, oct.V, oct.F);
+  EXPECT_EQ(c.flipped_a, 1);
+  EXPECT_EQ(c.flipped_b, 1);
+
+  Overlay stale = imprecise;  // tolerances of another size than F are not the overlay's: kRoundingArea
+  stale.rounding_a.conservativeResize(stale.F.rows() - 1);
+  EXPECT_EQ(check_overlay(stale, oct.V, oct.F, oct.V, oct.F).flipped_a, 1);
+}
+
 // Far from the origin (1e4 times its size, the farthest check_mesh accepts) a mesh keeps the digits of its faces:
 // the areas are measured from each face's first corner. Measured at the absolute positions, a face's triangles
 // summed to its area within only 6e-11 of the mean face area here (4e-11 on sphere-ellipsoid's overlay), far above

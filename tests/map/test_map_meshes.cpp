@@ -13,6 +13,7 @@
 #include "common/test_meshes.h"
 #include "core/errors.h"
 #include "io/landmarks.h"
+#include "map/check_overlay.h"
 #include "map/write_map.h"
 
 namespace liftmap {
@@ -73,6 +74,14 @@ void expect_valid_map(const TriangleMesh& A, const TriangleMesh& B, int k, unsig
     worst = std::max(worst, (position(A, back) - position(A, x)).norm() / sqrt_area(A));
   }
   EXPECT_LT(worst, 1e-9);
+  // Every overlay triangle knows how precisely its sign is known on each side: never below the input faces' own
+  // rounding, and on these well-shaped flattenings nowhere near a visible area (a tolerance that hid folds).
+  const Overlay& o = map.overlay;
+  ASSERT_GT(o.F.rows(), 0);
+  ASSERT_EQ(o.rounding_a.size(), o.F.rows());
+  ASSERT_EQ(o.rounding_b.size(), o.F.rows());
+  EXPECT_GE(std::min(o.rounding_a.minCoeff(), o.rounding_b.minCoeff()), OverlayCheck::kRoundingArea);
+  EXPECT_LT(std::max(o.rounding_a.maxCoeff(), o.rounding_b.maxCoeff()), 1e-8);
   // The distortion of f is finite and at least 1 (max(Sigma, 1/sigma) >= 1).
   EXPECT_GE(map.distortion_f.mean, 1.0);
   EXPECT_TRUE(std::isfinite(map.distortion_f.max));
