@@ -58,7 +58,7 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
 
 /// Lowers E(U) = sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4), J_f the Jacobian of face f (JacobianOperator), by
 /// projected Newton (every face's 4 by 4 Hessian in J clamped to its positive semidefinite part, Teran et al.
-/// 2005): each step is cut to 0.8 of the largest step that keeps every face's determinant positive (the roots of
+/// 2005): each step is cut to 0.9 of the largest step that keeps every face's determinant positive (the roots of
 /// det(J + a dJ), a quadratic in a) and then backtracked until Armijo's condition holds. E is infinite at a
 /// flipped or degenerate face, so no step ever flips one. The vertices with fixed[v] != 0 do not move.
 /// \param op, F the mesh's Jacobian operator and #F by 3 faces
