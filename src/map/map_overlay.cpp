@@ -63,22 +63,27 @@ double disk_agreement(const MapResult& map, const DiskOverlay& disk) {
   return worst;
 }
 
-/// The fraction of its face's area below which the sign of a cell in face f of a disk flattened to X is rounding.
+/// Per face of a disk flattened to X: the fraction of its area below which the sign of a cell in it is rounding.
 /// The cell's corners are points of the plane, rounded to eps |x| at most |x| <= R (the face's largest corner);
 /// their barycentric coordinates in the face's flattened triangle then err by up to eps R / h, h its smallest
 /// altitude, and so does the cell's area as a fraction of the face's (the cell is at most the face). The factor
 /// 64 covers the few roundings of each corner (a crossing's parameter, the corner, its coordinates) and of the
-/// area. Never below OverlayCheck::kRoundingArea, the rounding of the area on the input face itself.
-double sign_rounding(const Mesh& disk, const Eigen::MatrixXd& X, FaceId f) {
-  const auto fv = disk.face_vertices(f);
-  const Eigen::Vector2d p0 = X.row(fv[0].idx).transpose(), p1 = X.row(fv[1].idx).transpose(),
-                        p2 = X.row(fv[2].idx).transpose();
-  const double twice_area = std::abs((p1 - p0).x() * (p2 - p0).y() - (p1 - p0).y() * (p2 - p0).x());
-  const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
-  const double radius = std::max({p0.norm(), p1.norm(), p2.norm()});
-  if (!(twice_area > 0)) return 1;  // a degenerate flattened face: no sign is meaningful (verify_map reports it)
-  const double height = twice_area / longest;
-  return std::max(OverlayCheck::kRoundingArea, 64 * std::numeric_limits<double>::epsilon() * radius / height);
+/// area. Never below OverlayCheck::kRoundingArea, the rounding of the area on the input face itself; 1 for a
+/// degenerate flattened face, where no sign is meaningful (verify_map reports the face).
+Eigen::VectorXd sign_rounding(const Mesh& disk, const Eigen::MatrixXd& X) {
+  Eigen::VectorXd rounding(disk.n_faces());
+  for (int f = 0; f < disk.n_faces(); ++f) {
+    const auto fv = disk.face_vertices(FaceId(f));
+    const Eigen::Vector2d p0 = X.row(fv[0].idx).transpose(), p1 = X.row(fv[1].idx).transpose(),
+                          p2 = X.row(fv[2].idx).transpose();
+    const double twice_area = std::abs((p1 - p0).x() * (p2 - p0).y() - (p1 - p0).y() * (p2 - p0).x());
+    const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+    const double radius = std::max({p0.norm(), p1.norm(), p2.norm()});
+    rounding(f) = twice_area > 0 ? std::max(OverlayCheck::kRoundingArea, 64 * std::numeric_limits<double>::epsilon() *
+                                                                             radius / (twice_area / longest))
+                                 : 1.0;
+  }
+  return rounding;
 }
 
 }  // namespace
@@ -118,13 +123,15 @@ Overlay overlay_of_map(const MapResult& map, double* agreement) {
   o.face_b.resize(nt);
   o.rounding_a.resize(nt);
   o.rounding_b.resize(nt);
+  const Eigen::VectorXd rounding_m = sign_rounding(map.disk_a, map.flattening.Phi);
+  const Eigen::VectorXd rounding_n = sign_rounding(map.disk_b, map.flattening.Psi);
   for (Eigen::Index t = 0; t < nt; ++t) {
     const auto i = static_cast<size_t>(t);
     for (int k = 0; k < 3; ++k) o.F(t, k) = new_id[static_cast<size_t>(disk.triangles[i][k])];
     o.face_a(t) = map.cut.a.face_to_input(disk.face_m[i]);
     o.face_b(t) = map.cut.b.face_to_input(disk.face_n[i]);
-    o.rounding_a(t) = sign_rounding(map.disk_a, map.flattening.Phi, FaceId(disk.face_m[i]));
-    o.rounding_b(t) = sign_rounding(map.disk_b, map.flattening.Psi, FaceId(disk.face_n[i]));
+    o.rounding_a(t) = rounding_m(disk.face_m[i]);
+    o.rounding_b(t) = rounding_n(disk.face_n[i]);
   }
   return o;
 }
