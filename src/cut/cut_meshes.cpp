@@ -1,5 +1,6 @@
 #include "cut/cut_meshes.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -7,6 +8,7 @@
 #include <unordered_set>
 
 #include "core/errors.h"
+#include "core/parallel_for_each.h"
 #include "cut/boundary_correspondence.h"
 #include "cut/cut_to_disk.h"
 #include "cut/cut_tree.h"
@@ -187,22 +189,25 @@ CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   TracedPaths traced = trace_cut_paths(ra, mesh_a, la, rb, mesh_b, lb, result.tree, trace);
   // The paths straight across input faces and the vertices of intermediate paths gone before the two sides'
   // vertices are paired, then the faces that the paired vertices split re-triangulated once more.
-  if (options.remesh) {
-    remesh_along_paths(ra, mesh_a, traced.paths_a, true);
-    remesh_along_paths(rb, mesh_b, traced.paths_b, true);
-  }
+  // Each side's steps are independent of the other's: one thread each where two are available.
+  const std::array<RefinedMesh*, 2> refined{&ra, &rb};
+  const std::array<const Mesh*, 2> input{&mesh_a, &mesh_b};
+  const std::array<std::vector<std::vector<int>>*, 2> paths{&traced.paths_a, &traced.paths_b};
+  const auto remesh = [&](bool straighten) {
+    parallel_for_each(2, 2, [&](int s) { remesh_along_paths(*refined[s], *input[s], *paths[s], straighten); });
+  };
+  if (options.remesh) remesh(true);
   equalize_paths(ra, mesh_a, traced.paths_a, rb, mesh_b, traced.paths_b, options.snap);
-  if (options.remesh) {
-    remesh_along_paths(ra, mesh_a, traced.paths_a);
-    remesh_along_paths(rb, mesh_b, traced.paths_b);
-  }
+  if (options.remesh) remesh(false);
   // Re-triangulation renumbers the vertices after the input's; the landmarks are the paths' ends.
   renumber_landmarks(traced.edges, traced.paths_a, la);
   renumber_landmarks(traced.edges, traced.paths_b, lb);
 
   CutDisk disk_a, disk_b;
-  result.a = finish(ra, mesh_a, la, std::move(traced.paths_a), disk_a);
-  result.b = finish(rb, mesh_b, lb, std::move(traced.paths_b), disk_b);
+  parallel_for_each(2, 2, [&](int s) {
+    if (s == 0) result.a = finish(ra, mesh_a, la, std::move(traced.paths_a), disk_a);
+    if (s == 1) result.b = finish(rb, mesh_b, lb, std::move(traced.paths_b), disk_b);
+  });
   const Mesh cut_a(disk_a.F, static_cast<int>(disk_a.to_refined.size()));
   const Mesh cut_b(disk_b.F, static_cast<int>(disk_b.to_refined.size()));
   result.nu = match_boundaries({&cut_a, &disk_a.to_refined, &la, &result.a.paths},

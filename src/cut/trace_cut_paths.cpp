@@ -3,15 +3,16 @@
 #include "core/edge_graph_distance.h"
 
 #include <algorithm>
+#include <boost/heap/d_ary_heap.hpp>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
-#include <queue>
 #include <string>
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "core/parallel_for_each.h"
 #include "cut/edge_key.h"
 #include "cut/geodesic_path.h"
 
@@ -155,8 +156,10 @@ struct Side {
     std::vector<int> pred(n, -1);
     std::map<int, std::pair<double, int>> best;
     double best_any = inf;
+    // Items (key, node), smallest first: every order of pops that respects this total order is the same, so the
+    // heap's arity does not change the paths; four children per node make a pop cheaper than a binary heap's.
     using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    boost::heap::d_ary_heap<Item, boost::heap::arity<4>, boost::heap::compare<std::greater<>>> queue;
     int n_sectors = 0;
     mesh.for_each_outgoing(VertexId(p), [&](HalfedgeId h) { n_sectors += is_tree_edge(p, mesh.head(h).idx) ? 1 : 0; });
     n_sectors = std::max(n_sectors, 1);
@@ -279,12 +282,11 @@ TracedPaths trace_cut_paths(RefinedMesh& a, const Mesh& input_a, const std::vect
   const std::array<const std::vector<int>*, 2> landmarks{&landmarks_a, &landmarks_b};
   TracedPaths out;
   for (size_t e = 0; e < tree.size(); ++e) {
-    const auto [parent, child] = tree[e];
+    const int parent = tree[e][0], child = tree[e][1];
     std::array<int, 2> c{}, p{};
     for (size_t s = 0; s < 2; ++s) {
       c[s] = (*landmarks[s])[static_cast<size_t>(child)];
       p[s] = (*landmarks[s])[static_cast<size_t>(parent)];
-      sides[s].prepare(c[s]);
     }
     // Candidate paths per sector of the parent landmark, on both meshes; the sector reached on both with the
     // least total length wins.
@@ -310,7 +312,12 @@ TracedPaths trace_cut_paths(RefinedMesh& a, const Mesh& input_a, const std::vect
       }
       return out_s;
     };
-    for (size_t s = 0; s < 2; ++s) candidates[s] = options.steiner ? sides[s].steiner_paths(c[s], p[s]) : edge_paths(s);
+    // The two meshes' steps for a tree edge are independent: one thread each where two are available.
+    parallel_for_each(2, 2, [&](int i) {
+      const auto s = static_cast<size_t>(i);
+      sides[s].prepare(c[s]);
+      candidates[s] = options.steiner ? sides[s].steiner_paths(c[s], p[s]) : edge_paths(s);
+    });
     int sector = choose();
     if (sector == -2 && options.steiner) {
       for (size_t s = 0; s < 2; ++s) candidates[s] = edge_paths(s);
@@ -321,7 +328,8 @@ TracedPaths trace_cut_paths(RefinedMesh& a, const Mesh& input_a, const std::vect
                           std::to_string(child) + ")");
     }
     std::array<std::vector<int>, 2> paths;
-    for (size_t s = 0; s < 2; ++s) {
+    parallel_for_each(2, 2, [&](int i) {
+      const auto s = static_cast<size_t>(i);
       Side& side = sides[s];
       RefinedMesh before = side.refined;
       paths[s] = insert_polyline(side.refined, side.input, candidates[s][sector].second);
@@ -338,7 +346,7 @@ TracedPaths trace_cut_paths(RefinedMesh& a, const Mesh& input_a, const std::vect
       }
       if (options.shorten) paths[s] = side.shorten(paths[s], sector);
       side.add_to_tree(paths[s], static_cast<int>(e));
-    }
+    });
     out.edges.push_back(tree[e]);
     out.paths_a.push_back(std::move(paths[0]));
     out.paths_b.push_back(std::move(paths[1]));

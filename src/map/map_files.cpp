@@ -9,7 +9,7 @@
 #include "io/landmarks.h"
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
-#include "map/thread_count_scope.h"
+#include "core/thread_count_scope.h"
 
 namespace liftmap {
 

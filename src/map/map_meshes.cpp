@@ -21,7 +21,7 @@
 #include "flatten/jacobian.h"
 #include "io/landmarks.h"
 #include "map/map_overlay.h"
-#include "map/thread_count_scope.h"
+#include "core/thread_count_scope.h"
 
 namespace liftmap {
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/errors.h"
+#include "core/thread_count_scope.h"
 #include "cut_test_util.h"
 
 namespace liftmap {
@@ -46,6 +47,31 @@ TEST(cut_meshes, MixedPatternsBetweenMeshes) {
     const auto lb = test::landmark_set(mb, 15, Pattern::kRandom, rng);
     const CutResult r = cut_meshes(ma.V, ma.F, mb.V, mb.F, la, lb);
     test::check_cut(r, ma, mb, la, lb);
+  }
+}
+
+TEST(cut_meshes, TheSameCutOnOneThreadAndOnTwo) {
+  // The two meshes' steps run on a thread each where two are available, the landmark distances on all: the cut
+  // must not depend on the thread count, to the last bit.
+  const auto ma = test::load("homer"), mb = test::load("camel");
+  std::mt19937 rng(5);
+  const auto la = test::landmark_set(ma, 8, Pattern::kRandom, rng);
+  const auto lb = test::landmark_set(mb, 8, Pattern::kRandom, rng);
+  const auto cut_on = [&](int threads) {
+    const ThreadCountScope scope(threads);
+    return cut_meshes(ma.V, ma.F, mb.V, mb.F, la, lb);
+  };
+  const CutResult one = cut_on(1), two = cut_on(2);
+  EXPECT_EQ(one.tree, two.tree);
+  EXPECT_EQ(one.nu, two.nu);
+  for (const auto& [x, y] : {std::pair{&one.a, &two.a}, std::pair{&one.b, &two.b}}) {
+    EXPECT_TRUE(x->V == y->V);
+    EXPECT_TRUE(x->F == y->F);
+    EXPECT_TRUE(x->F_cut == y->F_cut);
+    EXPECT_TRUE(x->cut_to_refined == y->cut_to_refined);
+    EXPECT_EQ(x->landmarks, y->landmarks);
+    EXPECT_EQ(x->paths, y->paths);
+    EXPECT_EQ(x->path_lengths, y->path_lengths);
   }
 }
 

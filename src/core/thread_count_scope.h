@@ -1,5 +1,5 @@
 #pragma once
-/// OpenMP's thread count of the calling thread, set for a scope (map_meshes, the outputs of map_files).
+/// OpenMP's thread count of the calling thread, set for a scope (map_meshes, the outputs of map_files, tests).
 
 #include <omp.h>
 
