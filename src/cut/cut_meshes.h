@@ -61,6 +61,8 @@ struct CutResult {
 ///        landmark's vertex, edge or face is out of range or has no face, a face point's coordinates are not
 ///        finite, non-negative and summing to 1, or two landmarks of one side are at one point.
 /// \throw PipelineError if an internal invariant fails (a bug).
+/// The two meshes' steps run on two of the calling thread's OpenMP threads where it has two (omp_set_num_threads,
+/// MapOptions::threads); the result is bitwise the same on one thread.
 CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const Eigen::MatrixXd& VB,
                      const Eigen::MatrixXi& FB, const std::vector<SurfacePoint>& landmarks_a,
                      const std::vector<SurfacePoint>& landmarks_b, const CutOptions& options = {});

@@ -17,6 +17,7 @@ namespace liftmap {
 std::vector<double> edge_graph_distances(const Mesh& mesh, const Eigen::MatrixXd& V, VertexId source);
 
 /// k by k symmetric matrix of approximate geodesic distances between the landmarks (edge-graph distances).
+/// One search per landmark, on the calling thread's OpenMP threads; the result does not depend on their number.
 /// \pre landmarks are distinct valid vertices of a connected mesh.
 Eigen::MatrixXd landmark_distances(const Mesh& mesh, const Eigen::MatrixXd& V, const std::vector<VertexId>& landmarks);
 
