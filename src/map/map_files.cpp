@@ -6,10 +6,10 @@
 
 #include "check/check_mesh.h"
 #include "core/errors.h"
+#include "core/thread_count_scope.h"
 #include "io/landmarks.h"
 #include "io/output_folder.h"
 #include "io/read_mesh.h"
-#include "core/thread_count_scope.h"
 
 namespace liftmap {
 

@@ -15,13 +15,13 @@
 #include "check/check_mesh.h"
 #include "core/errors.h"
 #include "core/seconds_since.h"
+#include "core/thread_count_scope.h"
 #include "core/total_area.h"
 #include "flatten/distortion.h"
 #include "flatten/flattening_checks.h"
 #include "flatten/jacobian.h"
 #include "io/landmarks.h"
 #include "map/map_overlay.h"
-#include "core/thread_count_scope.h"
 
 namespace liftmap {
 
