@@ -203,15 +203,15 @@ CutResult cut_meshes(const Eigen::MatrixXd& VA, const Eigen::MatrixXi& FA, const
   renumber_landmarks(traced.edges, traced.paths_a, la);
   renumber_landmarks(traced.edges, traced.paths_b, lb);
 
-  CutDisk disk_a, disk_b;
-  parallel_for_each(2, 2, [&](int s) {
-    if (s == 0) result.a = finish(ra, mesh_a, la, std::move(traced.paths_a), disk_a);
-    if (s == 1) result.b = finish(rb, mesh_b, lb, std::move(traced.paths_b), disk_b);
-  });
-  const Mesh cut_a(disk_a.F, static_cast<int>(disk_a.to_refined.size()));
-  const Mesh cut_b(disk_b.F, static_cast<int>(disk_b.to_refined.size()));
-  result.nu = match_boundaries({&cut_a, &disk_a.to_refined, &la, &result.a.paths},
-                               {&cut_b, &disk_b.to_refined, &lb, &result.b.paths});
+  const std::array<const std::vector<int>*, 2> landmarks{&la, &lb};
+  const std::array<CutSide*, 2> side{&result.a, &result.b};
+  std::array<CutDisk, 2> disk;
+  parallel_for_each(
+      2, 2, [&](int s) { *side[s] = finish(*refined[s], *input[s], *landmarks[s], std::move(*paths[s]), disk[s]); });
+  const Mesh cut_a(disk[0].F, static_cast<int>(disk[0].to_refined.size()));
+  const Mesh cut_b(disk[1].F, static_cast<int>(disk[1].to_refined.size()));
+  result.nu = match_boundaries({&cut_a, &disk[0].to_refined, &la, &result.a.paths},
+                               {&cut_b, &disk[1].to_refined, &lb, &result.b.paths});
   return result;
 }
 
