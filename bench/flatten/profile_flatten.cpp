@@ -6,6 +6,7 @@
 // line is then one of its iterations, with t = 1 / mu); PROFILE_P_INF=1 solves for p = inf; PROFILE_GAP_FRACTION=x sets
 // JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap); PROFILE_START_GAP_FRACTION=x sets
 // JointFlattenOptions::start_gap_fraction (0: every subproblem starts at the usual barrier parameter);
+// PROFILE_RELAXED_START_GAP_FRACTION=x sets JointFlattenOptions::relaxed_start_gap_fraction (0: off);
 // PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap; PROFILE_REFINED_GAP_FRACTION=x sets
 // JointFlattenOptions::refined_gap_fraction; PROFILE_ISOTROPIC=0 turns off
 // BarrierSettings::isotropic_anticonformal_curvature; PROFILE_REMESH=0 turns off CutOptions::remesh;
@@ -57,6 +58,9 @@ int main(int argc, char** argv) {
   }
   if (const char* g = std::getenv("PROFILE_GAP_FRACTION")) options.gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_START_GAP_FRACTION")) options.start_gap_fraction = std::atof(g);
+  if (const char* g = std::getenv("PROFILE_RELAXED_START_GAP_FRACTION")) {
+    options.relaxed_start_gap_fraction = std::atof(g);
+  }
   if (const char* g = std::getenv("PROFILE_MAX_SUBPROBLEM_GAP")) options.max_subproblem_gap = std::atof(g);
   if (const char* g = std::getenv("PROFILE_REFINED_GAP_FRACTION")) options.refined_gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);

@@ -243,8 +243,13 @@ double subproblem_gap(const JointFlattenOptions& options, const std::vector<Join
   return std::clamp(options.gap_fraction * last_relative_gain(iterations), finest, coarsest);
 }
 
-double start_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations) {
-  if (!(options.start_gap_fraction > 0) || iterations.size() < 2) return 0;
+double start_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations,
+                 bool relaxed_start) {
+  if (iterations.size() < 2) {
+    if (!relaxed_start || !(options.relaxed_start_gap_fraction > 0)) return 0;
+    return options.relaxed_start_gap_fraction * subproblem_gap(options, iterations);
+  }
+  if (!(options.start_gap_fraction > 0)) return 0;
   const double gain = last_relative_gain(iterations);
   return gain > 0 ? options.start_gap_fraction * gain : 0;
 }
@@ -329,7 +334,7 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     set_rotations(sp, X);
     SubproblemSettings solver = options.solver;
     solver.relative_gap = subproblem_gap(options, res.iterations);
-    solver.barrier.initial_gap = start_gap(options, res.iterations);
+    solver.barrier.initial_gap = start_gap(options, res.iterations, res.joint_start.steps > 0);
     const auto solve = [&](const SubproblemSettings& settings) {
       return primal_dual ? solve_convex_subproblem_primal_dual(sp, X, settings, cholesky, &assembly)
                          : solve_convex_subproblem(sp, X, settings, cholesky, &assembly);

@@ -68,6 +68,13 @@ struct JointFlattenOptions {
   /// previous minimiser, is within about that decrease of the new optimum. Half of gap_fraction, so that each
   /// subproblem after the first is a single centring from the previous minimiser. 0: off.
   double start_gap_fraction = 0.15;
+  /// Barrier method, p = 2, after the joint relaxation of the start (joint_start): the first subproblem starts at
+  /// the barrier parameter whose gap bound is relaxed_start_gap_fraction times its own gap (max_subproblem_gap),
+  /// instead of ~100 times the parameter that best centres the start. The relaxed start is within a few percent of
+  /// the first subproblem's optimum, as the previous minimiser is for the later ones, so a single centring from it
+  /// suffices. From the circle (no relaxation) the usual start stays: there the first subproblem has most of the
+  /// way to go. 0: off.
+  double relaxed_start_gap_fraction = 0.2;
   /// A subproblem solved to a gap coarser than refined_gap_fraction times relative_tolerance that ends above its
   /// start (the gap rule expected more progress than was left) is solved again from the same start, to that finer
   /// gap, starting at half of it. Below 1, so that a second result above the start certifies convergence: the
@@ -92,10 +99,12 @@ struct JointFlattenOptions {
 /// Whether joint_flatten solves its subproblems with the primal-dual method (else the barrier method).
 [[nodiscard]] bool uses_primal_dual(const JointFlattenOptions& options);
 
-/// The initial gap (BarrierSettings::initial_gap) of the next subproblem, given the iterates so far
-/// (start_gap_fraction); 0 for the first subproblem, or when the last outer iteration gained nothing.
-[[nodiscard]] double start_gap(const JointFlattenOptions& options,
-                               const std::vector<JointFlattenIteration>& iterations);
+/// The initial gap (BarrierSettings::initial_gap) of the next subproblem, given the iterates so far: for the first
+/// subproblem relaxed_start_gap_fraction times its gap if the start was relaxed (relaxed_start), else 0; for later
+/// ones start_gap_fraction times the last outer iteration's relative energy decrease, or 0 if it gained nothing.
+/// 0 means the barrier method's usual first parameter.
+[[nodiscard]] double start_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations,
+                               bool relaxed_start);
 
 /// What the joint relaxation of the start did (relax_joint_start).
 struct JointStartRelaxation {

@@ -128,18 +128,33 @@ TEST(flatten_joint, StartGapFollowsTheOuterProgress) {
   EXPECT_DOUBLE_EQ(opt.start_gap_fraction, 0.5 * opt.gap_fraction);
   std::vector<JointFlattenIteration> its(1);
   its[0].energy = 1000;
-  EXPECT_EQ(start_gap(opt, its), 0);  // first subproblem: the usual barrier parameter
+  EXPECT_EQ(start_gap(opt, its, false), 0);  // first subproblem from the circle: the usual barrier parameter
   its.emplace_back().energy = 10;
-  EXPECT_NEAR(start_gap(opt, its), 0.15 * 99, 1e-12);  // (the barrier method keeps the larger t anyway)
+  EXPECT_NEAR(start_gap(opt, its, false), 0.15 * 99, 1e-12);  // (the barrier method keeps the larger t anyway)
   its.emplace_back().energy = 10 / (1 + 4e-3);
-  EXPECT_NEAR(start_gap(opt, its), 0.15 * 4e-3, 1e-15);
+  EXPECT_NEAR(start_gap(opt, its, false), 0.15 * 4e-3, 1e-15);
+  EXPECT_NEAR(start_gap(opt, its, true), 0.15 * 4e-3, 1e-15);  // a relaxed start changes only the first
   opt.start_gap_fraction = 0.5;
-  EXPECT_NEAR(start_gap(opt, its), 2e-3, 1e-15);
+  EXPECT_NEAR(start_gap(opt, its, false), 2e-3, 1e-15);
   its.emplace_back().energy = its.back().energy;  // no gain: no guess either
-  EXPECT_EQ(start_gap(opt, its), 0);
+  EXPECT_EQ(start_gap(opt, its, false), 0);
   its.pop_back();
   opt.start_gap_fraction = 0;  // off
-  EXPECT_EQ(start_gap(opt, its), 0);
+  EXPECT_EQ(start_gap(opt, its, false), 0);
+}
+
+TEST(flatten_joint, FirstStartGapAfterTheRelaxationIsAFractionOfItsOwnGap) {
+  JointFlattenOptions opt;  // relaxed_start_gap_fraction 0.2, max_subproblem_gap 1e-2
+  std::vector<JointFlattenIteration> its(1);
+  its[0].energy = 8.1;
+  EXPECT_NEAR(start_gap(opt, its, true), 0.2 * 1e-2, 1e-15);  // one centring, deeper than the gap needs
+  EXPECT_EQ(start_gap(opt, its, false), 0);                   // from the circle: the usual parameter
+  opt.max_subproblem_gap = 4e-3;
+  EXPECT_NEAR(start_gap(opt, its, true), 0.2 * 4e-3, 1e-15);
+  opt.gap_fraction = 0;  // every subproblem to the solver's own gap: so is the first's start
+  EXPECT_NEAR(start_gap(opt, its, true), 0.2 * opt.solver.relative_gap, 1e-18);
+  opt.relaxed_start_gap_fraction = 0;  // off
+  EXPECT_EQ(start_gap(opt, its, true), 0);
 }
 
 // The second subproblem of a camel/cow patch pair (faces_a + faces_b faces): the first one solved from the Tutte
