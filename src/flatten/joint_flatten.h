@@ -69,11 +69,11 @@ struct JointFlattenOptions {
   /// subproblem after the first is a single centring from the previous minimiser. 0: off.
   double start_gap_fraction = 0.15;
   /// Barrier method, p = 2, after the joint relaxation of the start (joint_start): the first subproblem starts at
-  /// the barrier parameter whose gap bound is relaxed_start_gap_fraction times its own gap (max_subproblem_gap),
-  /// instead of ~100 times the parameter that best centres the start. The relaxed start is within a few percent of
-  /// the first subproblem's optimum, as the previous minimiser is for the later ones, so a single centring from it
-  /// suffices. From the circle (no relaxation) the usual start stays: there the first subproblem has most of the
-  /// way to go. 0: off.
+  /// the barrier parameter whose gap bound is relaxed_start_gap_fraction times its own gap (subproblem_gap:
+  /// max_subproblem_gap, or solver.relative_gap if gap_fraction is 0), instead of ~100 times the parameter that best
+  /// centres the start. The relaxed start is within a few percent of the first subproblem's optimum, as the previous
+  /// minimiser is for the later ones, so a single centring from it suffices. From the circle (no relaxation) the usual
+  /// start stays: there the first subproblem has most of the way to go. 0: off.
   double relaxed_start_gap_fraction = 0.2;
   /// A subproblem solved to a gap coarser than refined_gap_fraction times relative_tolerance that ends above its
   /// start (the gap rule expected more progress than was left) is solved again from the same start, to that finer
