@@ -7,6 +7,7 @@
 // JointFlattenOptions::gap_fraction (0: every subproblem to relative_gap); PROFILE_START_GAP_FRACTION=x sets
 // JointFlattenOptions::start_gap_fraction (0: every subproblem starts at the usual barrier parameter);
 // PROFILE_RELAXED_START_GAP_FRACTION=x sets JointFlattenOptions::relaxed_start_gap_fraction (0: off);
+// PROFILE_ROTATION_GAIN_START_FRACTION=x sets JointFlattenOptions::rotation_gain_start_fraction (0: off);
 // PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap; PROFILE_REFINED_GAP_FRACTION=x sets
 // JointFlattenOptions::refined_gap_fraction; PROFILE_ISOTROPIC=0 turns off
 // BarrierSettings::isotropic_anticonformal_curvature; PROFILE_REMESH=0 turns off CutOptions::remesh;
@@ -61,6 +62,9 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_RELAXED_START_GAP_FRACTION")) {
     options.relaxed_start_gap_fraction = std::atof(g);
   }
+  if (const char* g = std::getenv("PROFILE_ROTATION_GAIN_START_FRACTION")) {
+    options.rotation_gain_start_fraction = std::atof(g);
+  }
   if (const char* g = std::getenv("PROFILE_MAX_SUBPROBLEM_GAP")) options.max_subproblem_gap = std::atof(g);
   if (const char* g = std::getenv("PROFILE_REFINED_GAP_FRACTION")) options.refined_gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);
@@ -88,8 +92,8 @@ int main(int argc, char** argv) {
       c = Centring{.index = s.centring, .t = s.t};
     }
     if (std::getenv("PROFILE_STEPS")) {
-      std::printf("    step: lambda2 %10.4g  step %8.3g%s  f0 %.6g\n", s.lambda2, s.step, s.repaired ? " repaired" : "",
-                  s.objective);
+      std::printf("    step: lambda2 %10.4g  step %8.3g%s%s  f0 %.6g\n", s.lambda2, s.step,
+                  s.repaired ? " repaired" : "", s.isotropic ? " isotropic" : "", s.objective);
     }
     ++c.steps;
     c.seconds += s.seconds;
@@ -108,8 +112,11 @@ int main(int argc, char** argv) {
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (size_t i = 0; i < r.iterations.size(); ++i) {
     const auto& it = r.iterations[i];
-    std::printf("iterate %zu: energy %.6f  max distortion %.4g  gap %.2g  Newton steps %d  %.2f s\n", i, it.energy,
-                it.max_distortion, it.subproblem_gap, it.newton_steps, it.seconds);
+    std::printf(
+        "iterate %zu: energy %.6f  max distortion %.4g  gap %.2g  Newton steps %d  %.2f s  subproblem objective "
+        "%.6f%s\n",
+        i, it.energy, it.max_distortion, it.subproblem_gap, it.newton_steps, it.seconds, it.subproblem_objective,
+        it.subproblem_refined ? " (refined)" : "");
   }
   std::printf("flatten total %.2f s %s\n", total, r.stop_reason.c_str());
   return 0;
