@@ -233,6 +233,15 @@ double last_relative_gain(const std::vector<JointFlattenIteration>& iterations) 
   return (before - last) / last;
 }
 
+/// The last outer iteration's rotation gain (Q_{k-1}(X_k) - E_k) / E_k: how far the energy (8) at its minimiser X_k,
+/// with X_k's own polar rotations, lies below the objective (10a) the subproblem reached there with the rotations it
+/// was solved with; 0 if the iteration records no subproblem (the start).
+double last_rotation_gain(const std::vector<JointFlattenIteration>& iterations) {
+  const JointFlattenIteration& last = iterations.back();
+  if (!(last.subproblem_objective > 0)) return 0;
+  return (last.subproblem_objective - last.energy) / last.energy;
+}
+
 }  // namespace
 
 double subproblem_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations) {
@@ -251,7 +260,11 @@ double start_gap(const JointFlattenOptions& options, const std::vector<JointFlat
   }
   if (!(options.start_gap_fraction > 0)) return 0;
   const double gain = last_relative_gain(iterations);
-  return gain > 0 ? options.start_gap_fraction * gain : 0;
+  if (!(gain > 0)) return 0;
+  const double gap = options.start_gap_fraction * gain;
+  const double rotations = last_rotation_gain(iterations);
+  if (!(options.rotation_gain_start_fraction > 0) || !(rotations > 0)) return gap;
+  return std::min(gap, std::max(options.rotation_gain_start_fraction * rotations, 0.5 * options.solver.relative_gap));
 }
 
 bool can_refine(const JointFlattenOptions& options, const SubproblemSettings& solver) {

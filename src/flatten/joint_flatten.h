@@ -68,6 +68,14 @@ struct JointFlattenOptions {
   /// previous minimiser, is within about that decrease of the new optimum. Half of gap_fraction, so that each
   /// subproblem after the first is a single centring from the previous minimiser. 0: off.
   double start_gap_fraction = 0.15;
+  /// Barrier method, p = 2: a subproblem after the first starts at most at the barrier parameter whose gap bound is
+  /// rotation_gain_start_fraction times the previous outer iteration's rotation gain (Q_{k-1}(X_k) - E(X_k)) / E(X_k):
+  /// how far the energy (8) at the previous minimiser X_k, with its own polar rotations, lies below the objective
+  /// (10a) of the subproblem that found it (Q_{k-1} >= E, docs/algorithm.md). The next outer iteration gains about
+  /// 0.4 to 1 times that, which after a relaxed start can be far below the last gain that start_gap_fraction follows:
+  /// a single centring at start_gap_fraction times the last gain then ends above its own start and is solved again
+  /// (refined_gap_fraction). Never below half of solver.relative_gap. 0: off.
+  double rotation_gain_start_fraction = 2;
   /// Barrier method, p = 2, after the joint relaxation of the start (joint_start): the first subproblem starts at
   /// the barrier parameter whose gap bound is relaxed_start_gap_fraction times its own gap (subproblem_gap:
   /// max_subproblem_gap, or solver.relative_gap if gap_fraction is 0), instead of ~100 times the parameter that best
@@ -101,7 +109,9 @@ struct JointFlattenOptions {
 
 /// The initial gap (BarrierSettings::initial_gap) of the next subproblem, given the iterates so far: for the first
 /// subproblem relaxed_start_gap_fraction times its gap if the start was relaxed (relaxed_start), else 0; for later
-/// ones start_gap_fraction times the last outer iteration's relative energy decrease, or 0 if it gained nothing.
+/// ones start_gap_fraction times the last outer iteration's relative energy decrease, at most
+/// rotation_gain_start_fraction times its rotation gain (JointFlattenIteration::subproblem_objective above energy),
+/// or 0 if it gained nothing.
 /// 0 means the barrier method's usual first parameter.
 [[nodiscard]] double start_gap(const JointFlattenOptions& options, const std::vector<JointFlattenIteration>& iterations,
                                bool relaxed_start);

@@ -79,6 +79,7 @@ nlohmann::json map_report(const MapResult& map, const std::string& path_a, const
       {"max_subproblem_gap", options.flatten.max_subproblem_gap},
       {"start_gap_fraction", options.flatten.start_gap_fraction},
       {"relaxed_start_gap_fraction", options.flatten.relaxed_start_gap_fraction},
+      {"rotation_gain_start_fraction", options.flatten.rotation_gain_start_fraction},
       {"isotropic_anticonformal_curvature", options.flatten.solver.barrier.isotropic_anticonformal_curvature},
       {"max_iterations", options.flatten.max_iterations},
       {"start_relaxation_steps", options.flatten.joint_start.newton.max_iterations},

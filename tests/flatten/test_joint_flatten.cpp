@@ -143,6 +143,28 @@ TEST(flatten_joint, StartGapFollowsTheOuterProgress) {
   EXPECT_EQ(start_gap(opt, its, false), 0);
 }
 
+TEST(flatten_joint, StartGapAtMostAFewTimesTheRotationGain) {
+  JointFlattenOptions opt;  // start_gap_fraction 0.15, rotation_gain_start_fraction 2
+  EXPECT_DOUBLE_EQ(opt.rotation_gain_start_fraction, 2);
+  std::vector<JointFlattenIteration> its(2);
+  its[0].energy = 5.447973;  // sphere-ellipsoid at 200k faces per mesh: a 2.8% gain, a 4e-4 rotation gain
+  its[1].energy = 5.299117;
+  its[1].subproblem_objective = 5.301212;
+  const double gain = (its[0].energy - its[1].energy) / its[1].energy;
+  const double rotations = (its[1].subproblem_objective - its[1].energy) / its[1].energy;
+  EXPECT_NEAR(start_gap(opt, its, true), 2 * rotations, 1e-15);  // not 0.15 * gain = 4.2e-3
+  EXPECT_LT(start_gap(opt, its, true), 0.15 * gain / 5);
+  its[1].subproblem_objective = its[1].energy * (1 + 0.5 * gain);  // a large rotation gain: the last gain decides
+  EXPECT_NEAR(start_gap(opt, its, true), 0.15 * gain, 1e-15);
+  its[1].subproblem_objective = its[1].energy * (1 + 1e-9);  // never below half of the finest gap
+  EXPECT_NEAR(start_gap(opt, its, true), 0.5 * opt.solver.relative_gap, 1e-18);
+  its[1].subproblem_objective = 0;  // no subproblem recorded
+  EXPECT_NEAR(start_gap(opt, its, true), 0.15 * gain, 1e-15);
+  its[1].subproblem_objective = 5.301212;
+  opt.rotation_gain_start_fraction = 0;  // off
+  EXPECT_NEAR(start_gap(opt, its, true), 0.15 * gain, 1e-15);
+}
+
 TEST(flatten_joint, FirstStartGapAfterTheRelaxationIsAFractionOfItsOwnGap) {
   JointFlattenOptions opt;  // relaxed_start_gap_fraction 0.2, max_subproblem_gap 1e-2
   std::vector<JointFlattenIteration> its(1);
