@@ -71,6 +71,7 @@ class MapRefinedSubproblem : public ::testing::Test {
 std::unique_ptr<MapResult> MapRefinedSubproblem::by_gain_, MapRefinedSubproblem::by_rotations_;
 
 TEST_F(MapRefinedSubproblem, SecondSubproblemFromTheLastGainIsSolvedAgainFiner) {
+  ASSERT_TRUE(by_gain_ && by_rotations_) << "the pair was not mapped (see the error above)";
   const JointFlattenResult& fl = by_gain_->flattening;
   const double tolerance = JointFlattenOptions{}.relative_tolerance;
   bool refined = false;
@@ -89,6 +90,7 @@ TEST_F(MapRefinedSubproblem, SecondSubproblemFromTheLastGainIsSolvedAgainFiner) 
 }
 
 TEST_F(MapRefinedSubproblem, SecondSubproblemFromTheRotationGainEndsBelowItsStart) {
+  ASSERT_TRUE(by_gain_ && by_rotations_) << "the pair was not mapped (see the error above)";
   expect_converged_map(*by_rotations_);
   const JointFlattenResult& fl = by_rotations_->flattening;
   const JointFlattenResult& other = by_gain_->flattening;
