@@ -8,15 +8,17 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdlib>
-#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "io/landmarks.h"
 #include "io/read_mesh.h"
 #include "map/map_meshes.h"
+#include "map/write_map.h"
 
 namespace liftmap {
 namespace {
@@ -35,11 +37,11 @@ RefinedPair refined_pair() {
   return p;
 }
 
-MapResult map_pair(const RefinedPair& p, double rotation_gain_start_fraction) {
+MapOptions map_options(double rotation_gain_start_fraction) {
   MapOptions options;
   options.overlay = false;  // the overlay does not take part in the flattening; the verification still runs
   options.flatten.rotation_gain_start_fraction = rotation_gain_start_fraction;
-  return map_meshes(p.a.V, p.a.F, p.b.V, p.b.F, p.landmarks.a, p.landmarks.b, options);
+  return options;
 }
 
 /// Every outer iteration lowered the energy, the loop converged by its rule and the map passed its verification.
@@ -54,26 +56,11 @@ void expect_converged_map(const MapResult& m) {
   EXPECT_TRUE(m.verification.passed);
 }
 
-/// The pair mapped twice: the second subproblem started from the last gain alone, and by default.
-class MapRefinedSubproblem : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    const RefinedPair p = refined_pair();
-    by_gain_ = std::make_unique<MapResult>(map_pair(p, 0));
-    by_rotations_ = std::make_unique<MapResult>(map_pair(p, JointFlattenOptions{}.rotation_gain_start_fraction));
-  }
-  static void TearDownTestSuite() {
-    by_gain_.reset();
-    by_rotations_.reset();
-  }
-  static std::unique_ptr<MapResult> by_gain_, by_rotations_;
-};
-std::unique_ptr<MapResult> MapRefinedSubproblem::by_gain_, MapRefinedSubproblem::by_rotations_;
-
-TEST_F(MapRefinedSubproblem, SecondSubproblemFromTheLastGainIsSolvedAgainFiner) {
-  ASSERT_TRUE(by_gain_ && by_rotations_) << "the pair was not mapped (see the error above)";
-  const JointFlattenResult& fl = by_gain_->flattening;
-  const double tolerance = JointFlattenOptions{}.relative_tolerance;
+/// The map whose second subproblem started from the last gain alone took the refined path, and its report.json says
+/// so (what tests/cli/refined_subproblem.sh checked through the CLI while the defaults took that path).
+void expect_refined_path(const RefinedPair& p, const MapResult& m, const MapOptions& options) {
+  const JointFlattenResult& fl = m.flattening;
+  const double tolerance = options.flatten.relative_tolerance;
   bool refined = false;
   for (size_t i = 1; i < fl.iterations.size(); ++i) {
     const JointFlattenIteration& it = fl.iterations[i];
@@ -86,24 +73,47 @@ TEST_F(MapRefinedSubproblem, SecondSubproblemFromTheLastGainIsSolvedAgainFiner) 
   // Either the second solve ended below its start (an iteration marked refined) or above it too (converged there).
   EXPECT_TRUE(refined || fl.last_subproblem_steps > 0) << "no subproblem was solved again: the pair no longer "
                                                           "exercises the path";
-  expect_converged_map(*by_gain_);
+  expect_converged_map(m);
+  const nlohmann::json report = map_report(m, "A.off", p.a, "B.off", p.b, p.landmarks, options);
+  const nlohmann::json& its = report["flatten"]["iterations"];
+  ASSERT_EQ(its.size(), fl.iterations.size());
+  for (size_t i = 0; i < fl.iterations.size(); ++i) {
+    EXPECT_EQ(its[i]["subproblem_refined"].get<bool>(), fl.iterations[i].subproblem_refined) << "iteration " << i;
+  }
+  EXPECT_EQ(report["flatten"]["last_subproblem_steps"].get<int>(), fl.last_subproblem_steps);
+  EXPECT_TRUE(report["flatten"]["converged"].get<bool>());
+  EXPECT_TRUE(report["verification"]["passed"].get<bool>());
+  EXPECT_EQ(report["options"]["rotation_gain_start_fraction"].get<double>(), 0);
 }
 
-TEST_F(MapRefinedSubproblem, SecondSubproblemFromTheRotationGainEndsBelowItsStart) {
-  ASSERT_TRUE(by_gain_ && by_rotations_) << "the pair was not mapped (see the error above)";
-  expect_converged_map(*by_rotations_);
-  const JointFlattenResult& fl = by_rotations_->flattening;
-  const JointFlattenResult& other = by_gain_->flattening;
+/// The default map of the same pair: no refined path, fewer Newton steps in the second outer iteration than `other`
+/// (the map from the last gain alone), the same first iteration and a final energy within the tolerance of it.
+void expect_no_refined_path(const MapResult& m, const MapResult& other) {
+  expect_converged_map(m);
+  const JointFlattenResult& fl = m.flattening;
   ASSERT_GE(fl.iterations.size(), 3U);
-  ASSERT_GE(other.iterations.size(), 3U);
+  ASSERT_GE(other.flattening.iterations.size(), 3U);
   for (size_t i = 1; i < fl.iterations.size(); ++i) EXPECT_FALSE(fl.iterations[i].subproblem_refined);
   EXPECT_EQ(fl.last_subproblem_steps, 0);
-  // The same first outer iteration; the second without the coarse solve that ended above its start.
-  EXPECT_EQ(fl.iterations[1].energy, other.iterations[1].energy);
-  EXPECT_LT(fl.iterations[2].newton_steps, other.iterations[2].newton_steps);
-  // Converged within the outer tolerance of the other map's energy.
-  const double e = fl.iterations.back().energy, e_other = other.iterations.back().energy;
+  EXPECT_EQ(fl.iterations[1].energy, other.flattening.iterations[1].energy);
+  EXPECT_LT(fl.iterations[2].newton_steps, other.flattening.iterations[2].newton_steps);
+  const double e = fl.iterations.back().energy, e_other = other.flattening.iterations.back().energy;
   EXPECT_LT(std::abs(e - e_other), JointFlattenOptions{}.relative_tolerance * e_other);
+}
+
+// One test, so that one process maps the pair once each way (ctest runs every test in a process of its own).
+TEST(map_refined_subproblem, RefinedSolveFromTheLastGainAndNoneFromTheRotationGain) {
+  const RefinedPair p = refined_pair();
+  const MapOptions by_gain_options = map_options(0);
+  const MapResult by_gain = map_meshes(p.a.V, p.a.F, p.b.V, p.b.F, p.landmarks.a, p.landmarks.b, by_gain_options);
+  {
+    SCOPED_TRACE("start_gap_fraction alone: the refined path");
+    expect_refined_path(p, by_gain, by_gain_options);
+  }
+  const MapResult by_rotations = map_meshes(p.a.V, p.a.F, p.b.V, p.b.F, p.landmarks.a, p.landmarks.b,
+                                            map_options(JointFlattenOptions{}.rotation_gain_start_fraction));
+  SCOPED_TRACE("the default start from the rotation gain: no refined path");
+  expect_no_refined_path(by_rotations, by_gain);
 }
 
 }  // namespace
