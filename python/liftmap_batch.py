@@ -15,7 +15,7 @@ import liftmap
 
 # The keywords of liftmap.map that are options of `liftmap map` (map_argument_specs in src/map/map_arguments.h).
 OPTIONS = ("p", "h", "normalize", "tolerance", "max_iterations", "solver", "tree", "samples", "start_relaxation",
-           "fix_orientation", "threads")
+           "fix_orientation", "overlay", "pictures", "threads")
 
 
 def _option_texts(options):

@@ -128,7 +128,7 @@ Options (the CLI's, README "Command line"):
   solver: "auto" (barrier for p = 2, primal-dual for p = inf), "barrier" or "primal-dual". Default "auto".
   tree: cut tree, "mst" (paper) or "path" (through all landmarks). Default "mst".
   start_relaxation: Newton steps at most of the start's joint relaxation, common boundary free, 0 to 10000 (0:
-    the paper's start on a circle, which takes more outer iterations). Default 100.
+    the paper's start on a circle, which takes more outer iterations). Default 300.
   overlay: compute the overlay (Map.overlay, overlay.obj) and check it in the verification (the CLI's
     --no-overlay is overlay=False). Default True.
   samples: n, the n^2 samples per face at which the distortion of f and g is measured, 1 to 10. Default 2.
@@ -223,10 +223,11 @@ interpolated at its image g(w) (source "A"), or each vertex of A gets B's values
   values: (#V,) or (#V, k) numeric array, one row per vertex of the source.
 Returns float64 of shape (#V_other,) or (#V_other, k).
 Raises InvalidInputError if the rows do not match the source's vertices.)")
-      .def("save", &Map::save, "dir"_a, R"(save(dir)
+      .def("save", &Map::save, "dir"_a, "pictures"_a = true, R"(save(dir, pictures=True)
 
 Writes the files of `liftmap map` into dir (created if missing; a previous run's files are removed first),
-report.json last. Raises ReadError if the folder cannot be written.)");
+report.json last; with pictures=False (the CLI's --no-pictures) all but render.png and distortion.png, which take
+about a second to draw. Raises ReadError if the folder cannot be written.)");
 }
 
 }  // namespace

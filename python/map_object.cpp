@@ -144,11 +144,11 @@ py::dict Map::overlay() const {
 
 py::object Map::report() const { return py::module_::import("json").attr("loads")(state_->report.dump()); }
 
-void Map::save(const std::string& dir) const {
+void Map::save(const std::string& dir, bool pictures) const {
   const MapState& s = *state_;
   py::gil_scoped_release unlocked;
   prepare_output_folder(dir, map_output_names(), {});
-  write_map_folder(dir, s.result, s.inputs, s.report);
+  write_map_folder(dir, s.result, s.inputs, s.report, pictures);
 }
 
 }  // namespace liftmap::python

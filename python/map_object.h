@@ -60,8 +60,8 @@ class Map {
   /// report.json as a dict.
   [[nodiscard]] pybind11::object report() const;
   [[nodiscard]] bool verified() const { return state_->result.verification.passed; }
-  /// Writes the files of `liftmap map` into `dir`.
-  void save(const std::string& dir) const;
+  /// Writes the files of `liftmap map` into `dir`; without `pictures`, all but render.png and distortion.png.
+  void save(const std::string& dir, bool pictures) const;
 
  private:
   std::shared_ptr<const MapState> state_;

@@ -119,6 +119,10 @@ const std::vector<MapArgumentSpec>& map_argument_specs() {
       {"overlay", "--no-overlay",
        "Do not compute the overlay (overlay.obj and its tables): for large meshes, a faster map and a smaller folder",
        "", true, false},
+      {"pictures", "--no-pictures",
+       "Do not draw render.png and distortion.png: about a second less per map, for many maps (the files with the "
+       "map's data are all written)",
+       "", true, false},
   };
   return specs;
 }
@@ -131,6 +135,7 @@ std::string set_map_argument_text(MapArguments& args, const std::string& name, c
   if (name == "normalize") return boolean_argument(args.normalize, value);
   if (name == "fix_orientation") return boolean_argument(args.fix_orientation, value);
   if (name == "overlay") return boolean_argument(args.overlay, value);
+  if (name == "pictures") return boolean_argument(args.pictures, value);
   if (name == "max_iterations") {
     return integer_argument(args.max_iterations, value, 0, MapOptionLimits::kMaxOuterIterations);
   }

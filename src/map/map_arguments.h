@@ -23,6 +23,7 @@ struct MapArguments {
   std::optional<int> threads;    ///< 1 to MapOptionLimits::max_threads(); unset: the calling thread's OpenMP setting
   bool fix_orientation = false;  ///< reverse an inside-out mesh with a warning instead of rejecting it
   bool overlay = true;           ///< compute and write the overlay (--no-overlay sets false)
+  bool pictures = true;          ///< write render.png and distortion.png (--no-pictures sets false)
 };
 
 /// One option of MapArguments as the front ends name it.

@@ -239,7 +239,7 @@ void write_input_maps(const std::string& dir, const MapResult& map, const MapInp
 }  // namespace
 
 void write_map_folder(const std::string& dir, const MapResult& map, const MapInputs& in, const nlohmann::json& report,
-                      const std::function<void(const std::string&, const std::string&)>& progress) {
+                      bool pictures, const std::function<void(const std::string&, const std::string&)>& progress) {
   const MapMeshes a_onto_b = input_meshes(in);
   write_input_maps(dir, map, in, a_onto_b);
   write_cut(dir, map.cut, map.flattening.Phi, map.flattening.Psi);
@@ -247,11 +247,13 @@ void write_map_folder(const std::string& dir, const MapResult& map, const MapInp
                    "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
   write_vertex_map(in_folder(dir, "cut_B_to_A.txt"), map.cut_b_to_a,
                    "per vt of cut_B.obj: face of cut_A.obj and barycentric coordinates");
-  if (progress) progress("render", "render.png, distortion.png, textured meshes");
-  write_map_render(in_folder(dir, "render.png"), map, in.a, in.b, in.landmarks.a, in.landmarks.b,
-                   "A: " + std::filesystem::path(in.name_a).filename().string(),
-                   "B: " + std::filesystem::path(in.name_b).filename().string());
-  write_distortion_histogram(in_folder(dir, "distortion.png"), map);
+  if (pictures) {
+    if (progress) progress("render", "render.png, distortion.png, textured meshes");
+    write_map_render(in_folder(dir, "render.png"), map, in.a, in.b, in.landmarks.a, in.landmarks.b,
+                     "A: " + std::filesystem::path(in.name_a).filename().string(),
+                     "B: " + std::filesystem::path(in.name_b).filename().string());
+    write_distortion_histogram(in_folder(dir, "distortion.png"), map);
+  }
   write_textured_meshes(dir, map);
   if (map.overlay.F.rows() > 0) {
     write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in), a_onto_b);

@@ -47,11 +47,12 @@ Landmarks landmarks_across_reversal(Landmarks landmarks, bool reversed_a, bool r
 nlohmann::json map_report(const MapResult& map, const MapInputs& inputs, const MapOptions& options);
 
 /// Writes every file of map_output_names() into `dir` (README, "Output of liftmap map"), report.json last, its
-/// content `report`. Call prepare_output_folder first: it removes a previous run's files.
+/// content `report`; without `pictures`, every file but render.png and distortion.png. Call prepare_output_folder
+/// first: it removes a previous run's files.
 /// \param progress called once before the pictures (empty: silent)
 /// \throw IoError if a file cannot be written.
 void write_map_folder(const std::string& dir, const MapResult& map, const MapInputs& inputs,
-                      const nlohmann::json& report,
+                      const nlohmann::json& report, bool pictures = true,
                       const std::function<void(const std::string&, const std::string&)>& progress = {});
 
 /// The report of a map as JSON: sizes, landmarks, options, timings, energies, distortion, verification.

@@ -127,4 +127,19 @@ expect "bad jobs" 2 "^liftmap: .*--jobs" -- batch "$manifest" -o "$never" --jobs
 expect "bad option" 2 "^liftmap: --max-iterations: value 10001 not in range 0 to 10000" -- \
   batch "$manifest" -o "$never" --max-iterations 10001
 require "nothing written" test ! -e "$never"
+
+# Pictures per pair from the manifest's column, or for every pair from --no-pictures.
+cat >"$in/pictures.csv" <<EOF
+name,mesh_a,mesh_b,landmarks,pictures
+drawn,$a,$b,lm/se.txt,
+not-drawn,$a,$b,lm/se.txt,false
+EOF
+expect "batch with a pictures column" 0 "2 ok, 0 failed" -- batch "$in/pictures.csv" -o "$tmp/pictures" -q
+require "pictures: drawn by default" test -s "$tmp/pictures/drawn/render.png"
+require "pictures: false in the manifest" test ! -e "$tmp/pictures/not-drawn/render.png"
+require "pictures: the rest written" test -s "$tmp/pictures/not-drawn/A_to_B.txt"
+expect "batch --no-pictures" 0 "1 ok, 0 failed" -- batch "$in/pictures.csv" -o "$tmp/no_pictures" -q --no-pictures \
+  --shard 0/2
+require "--no-pictures: none drawn" test ! -e "$tmp/no_pictures/drawn/render.png"
+require "--no-pictures: the pair mapped" grep -q '"passed": true' "$tmp/no_pictures/drawn/report.json"
 finish

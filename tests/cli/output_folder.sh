@@ -44,6 +44,22 @@ for f in cut_A.obj cut_B.obj boundary_map.txt cut_graph_A.obj cut_graph_B.obj; d
   require "cut wrote $f" test -s "$dir/$f"
 done
 
+# --no-pictures: every file of the map but the two pictures, and a previous run's pictures removed.
+expect "map again" 0 ".*" -- map "$a" "$b" -l "$lm" -o "$dir" --quiet
+require "the default draws render.png" test -s "$dir/render.png"
+cp -r "$dir" "$tmp/with_pictures"
+expect "map without pictures" 0 ".*" -- map "$a" "$b" -l "$lm" -o "$dir" --quiet --no-pictures
+for f in render.png distortion.png; do
+  require "--no-pictures: no $f" test ! -e "$dir/$f"
+done
+for f in $(ls "$tmp/with_pictures"); do
+  case "$f" in
+    render.png | distortion.png) ;;
+    report.json) require "--no-pictures: report says passed" grep -q '"passed": true' "$dir/report.json" ;;
+    *) require "--no-pictures: $f as with the pictures" cmp -s "$tmp/with_pictures/$f" "$dir/$f" ;;
+  esac
+done
+
 # An unwritable folder is found before any computation (as root, chmod does not stop writes: sysfs does).
 if [ "$(id -u)" = 0 ]; then
   ro=/sys/kernel

@@ -107,12 +107,22 @@ def test_shard_maps_its_pairs(manifest, cli_out, tmp_path):
                                                       ["bad-landmarks", "pending"]]
 
 
+def test_pictures_false_draws_none(manifest, cli_out, tmp_path):
+    out = tmp_path / "out"
+    result = liftmap.batch(manifest, out, shard="1/2", threads=1, progress=False, pictures=False)  # path-tree
+    assert (result["mapped"], result["ok"]) == (1, 1)
+    files = sorted(os.listdir(cli_out / "path-tree"))
+    assert "render.png" in files and "distortion.png" in files
+    assert sorted(os.listdir(out / "path-tree")) == [f for f in files if f not in ("render.png", "distortion.png")]
+
+
 @pytest.mark.parametrize("keywords,error,message", [
     ({"max_iterations": -1}, liftmap.UsageError, r"max_iterations: value -1 not in range 0 to 10000"),
     ({"tolerance": float("nan")}, liftmap.UsageError, r"tolerance: value nan is not a finite number > 0"),
     ({"shard": "2/2"}, liftmap.UsageError, r"shard: '2/2' is not i/n"),
     ({"jobs": 0}, liftmap.UsageError, r"jobs: 0 is not an integer >= 1"),
     ({"colour": "red"}, TypeError, r"unexpected keyword argument 'colour'"),
+    ({"pictures": "sometimes"}, liftmap.UsageError, r"pictures: "),
 ])
 def test_bad_options_raise(manifest, tmp_path, keywords, error, message):
     with pytest.raises(error, match=message):

@@ -61,6 +61,15 @@ def test_save_writes_the_cli_files(sphere_map, cli_out, tmp_path):
     assert without_seconds(json.load(open(tmp_path / "report.json"))) == without_seconds(sphere_map.report)
 
 
+def test_save_without_pictures_writes_every_other_file(sphere_map, cli_out, tmp_path):
+    (tmp_path / "render.png").write_bytes(b"a previous run's picture")
+    sphere_map.save(str(tmp_path), pictures=False)
+    names = sorted(n for n in os.listdir(cli_out) if n not in ("render.png", "distortion.png"))
+    assert sorted(os.listdir(tmp_path)) == names
+    different = [n for n in names if n != "report.json" and not filecmp.cmp(cli_out / n, tmp_path / n, shallow=False)]
+    assert different == []
+
+
 def test_points_lie_on_the_target(sphere_map, pair):
     VA, FA, VB, FB, landmarks = pair
     points = sphere_map.a_to_b.points()
