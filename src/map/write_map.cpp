@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <utility>
 
 #include "core/errors.h"
+#include "core/parallel_for_each.h"
 #include "cut/write_cut.h"
 #include "io/output_file.h"
 #include "io/text_line.h"
@@ -241,22 +243,33 @@ void write_input_maps(const std::string& dir, const MapResult& map, const MapInp
 void write_map_folder(const std::string& dir, const MapResult& map, const MapInputs& in, const nlohmann::json& report,
                       bool pictures, const std::function<void(const std::string&, const std::string&)>& progress) {
   const MapMeshes a_onto_b = input_meshes(in);
-  write_input_maps(dir, map, in, a_onto_b);
-  write_cut(dir, map.cut, map.flattening.Phi, map.flattening.Psi);
-  write_vertex_map(in_folder(dir, "cut_A_to_B.txt"), map.cut_a_to_b,
-                   "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
-  write_vertex_map(in_folder(dir, "cut_B_to_A.txt"), map.cut_b_to_a,
-                   "per vt of cut_B.obj: face of cut_A.obj and barycentric coordinates");
-  if (pictures) {
-    if (progress) progress("render", "render.png, distortion.png, textured meshes");
+  // The data files, independent of one another, on the caller's threads: the largest (the overlay's) first.
+  const std::vector<std::function<void()>> files = {
+      [&] {
+        if (map.overlay.F.rows() > 0) {
+          write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in), a_onto_b);
+        }
+      },
+      [&] { write_textured_meshes(dir, map); },
+      [&] { write_cut(dir, map.cut, map.flattening.Phi, map.flattening.Psi); },
+      [&] { write_input_maps(dir, map, in, a_onto_b); },
+      [&] {
+        write_vertex_map(in_folder(dir, "cut_A_to_B.txt"), map.cut_a_to_b,
+                         "per vt of cut_A.obj: face of cut_B.obj and barycentric coordinates");
+      },
+      [&] {
+        write_vertex_map(in_folder(dir, "cut_B_to_A.txt"), map.cut_b_to_a,
+                         "per vt of cut_B.obj: face of cut_A.obj and barycentric coordinates");
+      },
+  };
+  const int n = static_cast<int>(files.size());
+  parallel_for_each(n, n, [&](int i) { files[static_cast<size_t>(i)](); });
+  if (pictures) {  // after the files: the rasteriser runs on the threads itself
+    if (progress) progress("render", "render.png, distortion.png");
     write_map_render(in_folder(dir, "render.png"), map, in.a, in.b, in.landmarks.a, in.landmarks.b,
                      "A: " + std::filesystem::path(in.name_a).filename().string(),
                      "B: " + std::filesystem::path(in.name_b).filename().string());
     write_distortion_histogram(in_folder(dir, "distortion.png"), map);
-  }
-  write_textured_meshes(dir, map);
-  if (map.overlay.F.rows() > 0) {
-    write_overlay(in_folder(dir, "overlay.obj"), overlay_in_given_order(map.overlay, in), a_onto_b);
   }
   // Last: a folder with a report.json holds every file of this run.
   OutputFile file(in_folder(dir, "report.json"));
