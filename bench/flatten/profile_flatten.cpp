@@ -67,6 +67,15 @@ int main(int argc, char** argv) {
   }
   if (const char* g = std::getenv("PROFILE_MAX_SUBPROBLEM_GAP")) options.max_subproblem_gap = std::atof(g);
   if (const char* g = std::getenv("PROFILE_REFINED_GAP_FRACTION")) options.refined_gap_fraction = std::atof(g);
+  if (const char* g = std::getenv("PROFILE_RELAXATION_DECREASE")) {
+    options.joint_start.newton.relative_decrease = std::atof(g);
+  }
+  if (const char* g = std::getenv("PROFILE_RELAXATION_REUSE")) {
+    options.joint_start.newton.reuse_iterations = std::atoi(g);
+  }
+  if (const char* g = std::getenv("PROFILE_RELAXATION_REUSE_TOLERANCE")) {
+    options.joint_start.newton.reuse_tolerance = std::atof(g);
+  }
   if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);
   if (const char* g = std::getenv("PROFILE_ISOTROPIC"))
     options.solver.barrier.isotropic_anticonformal_curvature = std::atoi(g) != 0;
