@@ -102,8 +102,9 @@ out/summary.csv with its exit code and message and does not stop the others.
   progress: True: a tqdm bar if tqdm is installed, else one line per pair on stderr; False: silent.
   options: the keywords of liftmap.map that are options of `liftmap map` (p, h, normalize, tolerance,
     max_iterations, solver, tree, samples, start_relaxation, fix_orientation, overlay, threads) and pictures=False
-    (the CLI's --no-pictures: no render.png and distortion.png), for every pair unless its manifest line sets them. threads: without a client, of all maps together (divided between the jobs); with a
-    client, of each map (default: the worker's OpenMP setting).
+    (the CLI's --no-pictures: no render.png and distortion.png), for every pair unless its manifest line sets
+    them. threads: without a client, of all maps together (divided between the jobs); with a client, of each map
+    (default: the worker's OpenMP setting).
 Returns a dict: "pairs", "ok", "failed", "pending" (of summary.csv, every shard's pairs), "mapped" and "skipped" (of
 this call's pairs), "failures": [{"name", "exit_code", "message"}] of this call's pairs, "summary": its path.
 Raises UsageError for an option out of its range or a bad manifest column value, ReadError if the manifest cannot

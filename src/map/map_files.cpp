@@ -57,7 +57,7 @@ MapResult map_files(const std::string& path_a, const std::string& path_b, const 
   options.progress = progress;
   const MapInputs in = read_map_inputs(path_a, path_b, landmarks_path, out_dir, args.fix_orientation, warning);
   MapResult map = map_meshes(in.a.V, in.a.F, in.b.V, in.b.F, in.landmarks.a, in.landmarks.b, options);
-  const ThreadCountScope threads(options.threads);  // the pictures' rasteriser runs on the map's threads too
+  const ThreadCountScope threads(options.threads);  // the files and the pictures' rasteriser use the map's threads too
   write_map_folder(out_dir, map, in, map_report(map, in, options), args.pictures, options.progress);
   return map;
 }

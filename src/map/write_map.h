@@ -47,10 +47,12 @@ Landmarks landmarks_across_reversal(Landmarks landmarks, bool reversed_a, bool r
 nlohmann::json map_report(const MapResult& map, const MapInputs& inputs, const MapOptions& options);
 
 /// Writes every file of map_output_names() into `dir` (README, "Output of liftmap map"), report.json last, its
-/// content `report`; without `pictures`, every file but render.png and distortion.png. Call prepare_output_folder
-/// first: it removes a previous run's files.
-/// \param progress called once before the pictures (empty: silent)
-/// \throw IoError if a file cannot be written.
+/// content `report`; without `pictures`, every file but render.png and distortion.png. The data files are written
+/// at once on the calling thread's OpenMP threads (their bytes do not depend on the threads), then the pictures.
+/// Call prepare_output_folder first: it removes a previous run's files.
+/// \param progress called once before the pictures, if drawn (empty: silent)
+/// \throw IoError if a file cannot be written (once every data file has been tried, the first failure in the
+///        order of the list in write_map.cpp); report.json is then not written.
 void write_map_folder(const std::string& dir, const MapResult& map, const MapInputs& inputs,
                       const nlohmann::json& report, bool pictures = true,
                       const std::function<void(const std::string&, const std::string&)>& progress = {});
