@@ -70,12 +70,6 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_RELAXATION_DECREASE")) {
     options.joint_start.newton.relative_decrease = std::atof(g);
   }
-  if (const char* g = std::getenv("PROFILE_RELAXATION_REUSE")) {
-    options.joint_start.newton.reuse_iterations = std::atoi(g);
-  }
-  if (const char* g = std::getenv("PROFILE_RELAXATION_REUSE_TOLERANCE")) {
-    options.joint_start.newton.reuse_tolerance = std::atof(g);
-  }
   if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);
   if (const char* g = std::getenv("PROFILE_ISOTROPIC"))
     options.solver.barrier.isotropic_anticonformal_curvature = std::atoi(g) != 0;
@@ -127,6 +121,8 @@ int main(int argc, char** argv) {
         i, it.energy, it.max_distortion, it.subproblem_gap, it.newton_steps, it.seconds, it.subproblem_objective,
         it.subproblem_refined ? " (refined)" : "");
   }
+  std::printf("start: per-disk steps %d + %d, joint relaxation %d steps, %.2f s\n", r.start_steps[0], r.start_steps[1],
+              r.joint_start.steps, r.joint_start.seconds);
   std::printf("flatten total %.2f s %s\n", total, r.stop_reason.c_str());
   return 0;
 }
