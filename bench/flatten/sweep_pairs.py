@@ -20,20 +20,12 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from map_sweep import read_off  # noqa: E402  (bench/map_sweep.py: the OFF reader of the whole-map sweep)
+
 EXAMPLES = ["camel-cow", "man-homer", "fandisk-bunny"]
 RANDOM_PAIRS = [("armadillo", "bunny00"), ("diplodocus", "camel"), ("man", "cow"), ("hand", "triceratops"),
                 ("bear", "blobby"), ("triceratops", "camel"), ("armadillo", "homer"), ("camel", "cow")]
-
-
-def vertex_count(path):
-    """The vertex count of an OFF file (comments and a COFF/NOFF header allowed)."""
-    tokens = []
-    with open(path) as f:
-        for line in f:
-            tokens += line.split("#")[0].split()
-            if len(tokens) >= 2:
-                break
-    return int(tokens[1] if tokens[0].endswith("OFF") else tokens[0])
 
 
 def pairs(meshes, folder):
@@ -46,8 +38,8 @@ def pairs(meshes, folder):
     for k, (a, b) in enumerate(RANDOM_PAIRS):
         path_a, path_b = os.path.join(meshes, a + ".off"), os.path.join(meshes, b + ".off")
         rng = random.Random(100 + k)
-        va = rng.sample(range(vertex_count(path_a)), 5)
-        vb = rng.sample(range(vertex_count(path_b)), 5)
+        va = rng.sample(range(len(read_off(path_a)[0])), 5)
+        vb = rng.sample(range(len(read_off(path_b)[0])), 5)
         landmarks = os.path.join(folder, f"{a}-{b}-random5.txt")
         with open(landmarks, "w") as f:
             f.write("".join(f"{x} {y}\n" for x, y in zip(va, vb)))
@@ -55,7 +47,7 @@ def pairs(meshes, folder):
     return out
 
 
-def run(profile, name, a, b, landmarks):
+def run(profile, a, b, landmarks):
     """One profile_flatten run: (relaxation steps, outer Newton steps per iteration, energy, seconds, stop reason)."""
     text = subprocess.run([profile, a, b, landmarks], capture_output=True, text=True, check=True).stdout
     steps = [int(s) for i, s in re.findall(r"^iterate (\d+): .*Newton steps (\d+)", text, re.M) if int(i) > 0]
@@ -82,7 +74,7 @@ def main():
         for name, a, b, landmarks in pairs(args.meshes, folder):
             if args.only and name not in args.only and name.split()[0] not in args.only:
                 continue
-            relaxation, steps, energy, seconds, stop = run(profile, name, a, b, landmarks)
+            relaxation, steps, energy, seconds, stop = run(profile, a, b, landmarks)
             outer = "+".join(map(str, steps))
             print(f"{name:<28} {relaxation:>10} {outer:>20} {energy:>12.6f} {seconds:>8.2f} {stop}", flush=True)
             sums[0] += relaxation
