@@ -357,10 +357,11 @@ JointFlattenResult joint_flatten(const FlatteningDisk& m, const FlatteningDisk& 
     int earlier_steps = 0;  // Newton steps of a first solve that the finer one below replaced
     try {
       br = solve(solver);
-      // The start X is feasible with objective E(X) (the rotations are its polar ones). A result above that at a
-      // gap coarser than the outer tolerance says only that X is within that gap of the optimum: the gap rule
-      // expected more progress than is left. Solve again, finer than the tolerance (refined_gap_fraction).
-      if (br.objective > start_objective && can_refine(options, solver)) {
+      // The start X is feasible with objective E(X) (the rotations are its polar ones). A result not below that
+      // at a gap coarser than the outer tolerance says only that X is within that gap of the optimum: the gap rule
+      // expected more progress than is left. Solve again, finer than the tolerance (refined_gap_fraction). (A result
+      // equal to its start: a Newton direction's dual point certified the start itself, dual_gap_decrement.)
+      if (br.objective >= start_objective && can_refine(options, solver)) {
         earlier_steps = br.iterations;
         solver.relative_gap = options.refined_gap_fraction * options.relative_tolerance;
         solver.barrier.initial_gap = 0.5 * solver.relative_gap;

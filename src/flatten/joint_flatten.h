@@ -83,8 +83,8 @@ struct JointFlattenOptions {
   /// minimiser is for the later ones, so a single centring from it suffices. From the circle (no relaxation) the usual
   /// start stays: there the first subproblem has most of the way to go. 0: off.
   double relaxed_start_gap_fraction = 0.2;
-  /// A subproblem solved to a gap coarser than refined_gap_fraction times relative_tolerance that ends above its
-  /// start (the gap rule expected more progress than was left) is solved again from the same start, to that finer
+  /// A subproblem solved to a gap coarser than refined_gap_fraction times relative_tolerance that ends at or above
+  /// its start (the gap rule expected more progress than was left) is solved again from the same start, to that finer
   /// gap, starting at half of it. Below 1, so that a second result above the start certifies convergence: the
   /// subproblem's optimum is then within less than the tolerance of the start's energy
   /// (JointFlattenResult::last_subproblem_steps). 0: off (the loop stops early there, stop_reason says why).
