@@ -11,7 +11,8 @@
 // PROFILE_MAX_SUBPROBLEM_GAP=x sets JointFlattenOptions::max_subproblem_gap; PROFILE_REFINED_GAP_FRACTION=x sets
 // JointFlattenOptions::refined_gap_fraction; PROFILE_ISOTROPIC=0 turns off
 // BarrierSettings::isotropic_anticonformal_curvature; PROFILE_REMESH=0 turns off CutOptions::remesh;
-// PROFILE_START_STEPS=n sets JointFlattenOptions::start_optimization.max_iterations (0: off).
+// PROFILE_START_STEPS=n sets JointFlattenOptions::start_optimization.max_iterations (0: off);
+// PROFILE_DUAL_GAP_DECREMENT=x sets BarrierSettings::dual_gap_decrement (0: off).
 
 #include <chrono>
 #include <cstdio>
@@ -69,6 +70,9 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_REFINED_GAP_FRACTION")) options.refined_gap_fraction = std::atof(g);
   if (const char* g = std::getenv("PROFILE_RELAXATION_DECREASE")) {
     options.joint_start.newton.relative_decrease = std::atof(g);
+  }
+  if (const char* g = std::getenv("PROFILE_DUAL_GAP_DECREMENT")) {
+    options.solver.barrier.dual_gap_decrement = std::atof(g);
   }
   if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);
   if (const char* g = std::getenv("PROFILE_ISOTROPIC"))

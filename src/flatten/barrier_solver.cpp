@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "flatten/face_auxiliaries.h"
+#include "flatten/newton_dual_gap.h"
 #include "flatten/newton_system.h"
 #include "flatten/subproblem_faces.h"
 
@@ -443,6 +444,7 @@ struct Centring {
   bool roughly_centred = false;
   bool stalled = false;    ///< no step along the Newton direction decreased the merit before the tolerance
   double end_lambda2 = 0;  ///< Newton decrement where the centring ended
+  double dual_gap = kInf;  ///< the gap of the dual point of the last Newton direction, if it ended the centring
 };
 
 /// How a Newton step of a centring ended.
@@ -481,6 +483,7 @@ class BarrierSolver : SolverBase {
   void assemble();
   [[nodiscard]] CouplingColumns coupling_columns() const;
   [[nodiscard]] NewtonDirection newton_direction();
+  [[nodiscard]] double dual_gap(const NewtonDirection& d) const;
   StepEnd line_search_step(Centring& c, const NewtonDirection& d, double lambda2, SubproblemStep& trace,
                            Clock::time_point step_start, Clock::time_point& search_start);
   double line_search(const NewtonDirection& d, double lambda2, bool repair, State& out, double& merit,
@@ -617,8 +620,9 @@ bool BarrierSolver::centre(Centring& c) {
 bool BarrierSolver::end_centring(const Centring& c, bool stopped) {
   ++result_.centrings;
   if (c.stalled) ++result_.stalled_centrings;
-  // Gap bound at a point whose Newton decrement is lambda < 1 (exactly nu / t on the central path).
-  const double gap = gap_bound(nu_, std::sqrt(c.end_lambda2), t_);
+  // Gap bound at a point whose Newton decrement is lambda < 1 (exactly nu / t on the central path), or the gap of the
+  // dual point that ended the centring.
+  const double gap = std::min(gap_bound(nu_, std::sqrt(c.end_lambda2), t_), c.dual_gap);
   result_.gap_bound = gap;
   if (stopped) return true;
   if (gap <= settings_.relative_gap * f0()) {
@@ -766,6 +770,28 @@ NewtonDirection BarrierSolver::newton_direction() {
   return coupled.solve(Dx.col(0), Dy.col(0), {-g_t_[0], -g_t_[1]});
 }
 
+// The gap of the dual point built from the Newton direction d at the iterate (newton_dual_gap.h).
+double BarrierSolver::dual_gap(const NewtonDirection& d) const {
+  NewtonPoint p;
+  p.t = t_;
+  p.T = z_.T;
+  p.point = [&](int j) {
+    const Vec7 q = local_vars(s_, z_, j);
+    return FaceValues{q.head<4>(), q(kC), q(kE)};
+  };
+  p.direction = [&](int j) {
+    const FaceSetup& fs = s_.faces[static_cast<size_t>(j)];
+    Vec6 du;
+    for (int r = 0; r < 6; ++r) {
+      const int v = fs.var[static_cast<size_t>(r)];
+      du(r) = v >= 0 ? d.x(v) : 0.0;
+    }
+    return FaceValues{fs.S * du, d.y(2 * j), d.y(2 * j + 1)};
+  };
+  p.position_extent = z_.pos.cwiseAbs().maxCoeff();
+  return newton_dual_gap(s_, p);
+}
+
 StepEnd BarrierSolver::newton_step(Centring& c) {
   const auto step_start = Clock::now();
   SubproblemStep trace{.centring = result_.centrings, .t = t_, .isotropic = c.isotropic};
@@ -795,6 +821,15 @@ StepEnd BarrierSolver::newton_step(Centring& c) {
     c.stalled = -lambda2 / 2 > settings_.barrier.precision_tolerance;
     report(trace, step_start, search_start, 0, false);
     return StepEnd::kCentringEnds;
+  }
+  if (c.last && !c.isotropic && lambda2 / 2 <= settings_.barrier.dual_gap_decrement) {
+    // The centring has reached its point if the Newton direction's dual point certifies the gap already.
+    const double gap = dual_gap(d);
+    if (gap <= settings_.relative_gap * f0()) {
+      c.dual_gap = gap;
+      report(trace, step_start, search_start, 0, false);
+      return StepEnd::kCentringEnds;
+    }
   }
   if (c.isotropic && lambda2 / 2 <= c.tolerance) {
     // The decrement of a modified system certifies nothing: redo the step with the true Newton system.

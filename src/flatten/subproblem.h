@@ -89,6 +89,10 @@ struct BarrierSettings {
   /// the larger (the curvature of the majoriser of |.|, which the barrier smooths at a scale of ~1/t). The stopping
   /// tests use true Newton steps only.
   bool isotropic_anticonformal_curvature = true;
+  /// p = 2, h of eq. 3: in the last centring, every true Newton step whose lambda^2/2 is at most this first builds a
+  /// dual point from its direction (newton_dual_gap.h) and ends the centring if that point's gap meets relative_gap;
+  /// the decrement need not fall below 1. 0: off (the gap bound of newton_tolerance alone).
+  double dual_gap_decrement = 1e4;
 };
 
 /// Settings of the primal-dual method (primal_dual_solver.h).
@@ -124,7 +128,9 @@ struct SubproblemResult {
                          ///< objective is invariant under translation)
   double objective = 0;  ///< objective (10a) at X, auxiliary variables eliminated
   /// A bound of objective minus optimum: barrier (nu + lambda sqrt(nu) / (1 - lambda)) / t at the end (lambda: the
-  /// last Newton decrement); primal-dual the gap s^T z of the best dual-feasible iterate (+infinity if none).
+  /// last Newton decrement), or the gap of the dual point built from the last Newton direction if that was lower
+  /// (BarrierSettings::dual_gap_decrement); primal-dual the gap s^T z of the best dual-feasible iterate (+infinity if
+  /// none).
   double gap_bound = 0;
   int iterations = 0;  ///< Newton steps (barrier) or iterations (primal-dual)
   int centrings = 0;   ///< barrier: centrings run (primal-dual: 0)

@@ -292,6 +292,39 @@ TEST(flatten_barrier, WholeMeshSubproblemCertificateHolds) {
   EXPECT_GE(again.objective, r.objective - r.gap_bound - 1e-12 * r.objective);
 }
 
+// The dual point of a Newton direction (newton_dual_gap.h) certifies a gap before the Newton decrement falls below 1.
+// At each relative gap: its bound must hold (the objective no further above a much finer solve's than the bound),
+// be of the size of the barrier method's own bound at the same barrier parameter (both about nu / t; a dual point
+// built wrongly gives a bound that is either never met or far too small), and never cost Newton steps; over all
+// gaps it must save some.
+TEST(flatten_barrier, NewtonDualGapHoldsAndSavesSteps) {
+  const JointFlattenProblem jp = testing::camel_cow_patch_problem(testing::kAllCombos[0]);  // p = 2, eq. 3
+  SparseCholesky chol;
+  SubproblemSettings fine;
+  fine.relative_gap = 1e-10;
+  fine.barrier.dual_gap_decrement = 0;
+  const SubproblemResult best = solve_convex_subproblem(jp.subproblem, jp.X0, fine, chol);
+  ASSERT_TRUE(best.converged());
+  int saved = 0;
+  for (const double relative_gap : {1e-2, 1e-3, 1e-4, 1e-6}) {
+    SubproblemSettings with, without;
+    with.relative_gap = without.relative_gap = relative_gap;
+    without.barrier.dual_gap_decrement = 0;
+    const SubproblemResult r = solve_convex_subproblem(jp.subproblem, jp.X0, with, chol);
+    const SubproblemResult r0 = solve_convex_subproblem(jp.subproblem, jp.X0, without, chol);
+    std::printf("relative gap %g: %d Newton steps, bound %.3g (without: %d, %.3g); above the optimum by %.3g\n",
+                relative_gap, r.iterations, r.gap_bound, r0.iterations, r0.gap_bound, r.objective - best.objective);
+    ASSERT_TRUE(r.converged());
+    ASSERT_TRUE(r0.converged());
+    EXPECT_LE(r.gap_bound, relative_gap * r.objective);
+    EXPECT_GE(r.gap_bound, r.objective - best.objective);
+    EXPECT_LE(r.iterations, r0.iterations);
+    EXPECT_GT(r.gap_bound, 0.3 * r0.gap_bound);
+    saved += r0.iterations - r.iterations;
+  }
+  EXPECT_GT(saved, 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(AllCombos, flatten_barrier, ::testing::ValuesIn(testing::kAllCombos),
                          [](const auto& info) { return std::string(info.param.name); });
 

@@ -1,0 +1,210 @@
+#include "flatten/newton_dual_gap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace liftmap::subproblem {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Local variables (alpha, beta, gamma, delta, c, e) of a face.
+using Vec6L = Eigen::Matrix<double, 6, 1>;
+using Mat6L = Eigen::Matrix<double, 6, 6>;
+constexpr int kC = 4;
+constexpr int kE = 5;
+
+Vec6L local(const FaceValues& f) {
+  Vec6L q;
+  q << f.a, f.c, f.e;
+  return q;
+}
+
+/// The share -(grad F + hess F dq) / t of the term F = -log(g) (g > 0, gradient dg, Hessian d2g).
+Vec6L log_barrier_share(double g, const Vec6L& dg, const Mat6L& d2g, const Vec6L& dq, double t) {
+  return (dg / g * (1 - dg.dot(dq) / g) + d2g * dq / g) / t;
+}
+
+/// The multiplier -(grad F + hess F ds) / t of the second-order cone term F = -log(s^T J s) of the cone
+/// c >= |(gamma, delta)|, s = (c, gamma, delta).
+Eigen::Vector3d cone_share(const Vec6L& q, const Vec6L& dq, double t) {
+  const Eigen::Vector3d s(q(kC), q(2), q(3)), ds(dq(kC), dq(2), dq(3));
+  const Eigen::Vector3d Js(s(0), -s(1), -s(2)), Jds(ds(0), -ds(1), -ds(2));
+  const double g = s.dot(Js);
+  return (2 * Js / g + 2 * Jds / g - 4 * Js * s.dot(Jds) / (g * g)) / t;
+}
+
+/// n = |(alpha, beta)| with its gradient and Hessian in the local variables.
+struct Norm {
+  double n = 0;
+  Vec6L d = Vec6L::Zero();
+  Mat6L d2 = Mat6L::Zero();
+};
+
+Norm norm_of(const Vec6L& q) {
+  Norm r;
+  const double al = q(0), be = q(1);
+  r.n = std::sqrt(al * al + be * be);
+  r.d(0) = al / r.n;
+  r.d(1) = be / r.n;
+  const double n3 = r.n * r.n * r.n;
+  r.d2(0, 0) = be * be / n3;
+  r.d2(1, 1) = al * al / n3;
+  r.d2(0, 1) = r.d2(1, 0) = -al * be / n3;
+  return r;
+}
+
+/// The gradient of m = alpha cos + beta sin - c.
+Vec6L m_gradient(const FaceSetup& fs) {
+  Vec6L dm = Vec6L::Zero();
+  dm(0) = fs.cs;
+  dm(1) = fs.sn;
+  dm(kC) = -1;
+  return dm;
+}
+
+/// What the first pass keeps of a face: the part of its gap that does not depend on the objective cones' scaling,
+/// its epigraph's share on (alpha, beta, c, e), and its share on (alpha, beta, gamma, delta) for the residual.
+struct FaceShares {
+  double gap = 0;
+  Eigen::Vector4d epigraph = Eigen::Vector4d::Zero();
+  Eigen::Vector4d jacobian = Eigen::Vector4d::Zero();
+  bool ok = true;
+};
+
+/// An energy face (h of eq. 3): the cone of c, whose first entry is raised to the norm of the others if needed, and
+/// the epigraph's share, whose gap needs the scaling. The epigraph's share of c is minus the cone's, so that the
+/// face is stationary in c exactly (the Newton equation's row of c holds only up to rounding).
+FaceShares energy_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, double t) {
+  FaceShares out;
+  Eigen::Vector3d z1 = cone_share(q, dq, t);
+  const double rho = std::hypot(z1(1), z1(2));
+  z1(0) = std::max(z1(0), rho);
+  out.gap = z1.dot(Eigen::Vector3d(q(kC), q(2), q(3)));
+  const Norm nn = norm_of(q);
+  const double r = nn.n + q(kC), m = q(0) * fs.cs + q(1) * fs.sn - q(kC), sv = 1 / m;
+  const double R = std::sqrt(r * r + sv * sv);
+  const Vec6L dr = nn.d + Vec6L::Unit(kC);
+  const Vec6L dm = m_gradient(fs);
+  const Vec6L d_norm = (r * dr - sv * sv * sv * dm) / R;  // d(1/m) = -dm / m^2
+  const Mat6L d2_norm =
+      (dr * dr.transpose() + r * nn.d2 + 3 * sv * sv * sv * sv * dm * dm.transpose() - d_norm * d_norm.transpose()) / R;
+  const Vec6L v = log_barrier_share(q(kE) - R, Vec6L::Unit(kE) - d_norm, -d2_norm, dq, t);
+  out.epigraph << v(0), v(1), -z1(0), v(kE);
+  out.jacobian << v(0), v(1), z1(1), z1(2);
+  return out;
+}
+
+/// The epigraph's gap for its share v = (v_alpha, v_beta, v_c, v_e) (v_e already scaled), +infinity if no
+/// multipliers of its three cones reproduce v.
+double epigraph_gap(const Eigen::Vector4d& v, const Vec6L& q, const FaceSetup& fs) {
+  const double ve = v(3), vc = v(2);
+  if (!(ve > 0)) return kInf;
+  const Eigen::Vector2d d(fs.cs, fs.sn);
+  const Eigen::Vector2d w = v.head<2>() + vc * d;
+  const double wd = w.dot(d), ww = w.squaredNorm();
+  double a = 0;  // p b = sqrt(ve^2 - a^2) (-vc - a) decreases in a: the least a that keeps a (1, w / a) in its cone
+  if (ww > 0) {
+    if (!(wd < 0)) return kInf;
+    a = ww / (-2 * wd);
+  }
+  if (!(a <= ve && a <= -vc)) return kInf;
+  const double p = std::sqrt(ve * ve - a * a), b = -vc - a;
+  return v(0) * q(0) + v(1) * q(1) + vc * q(kC) + ve * q(kE) - 2 * std::sqrt(p * b);
+}
+
+/// A ghost face: the summed share of its three terms (c >= |(gamma, delta)|, m >= 0, n <= bound - c) split with the
+/// least gap: z1 = (z10, v_gamma, v_delta), z_m, z6 = (z10 - z_m - v_c, v_alpha - z_m cos, v_beta - z_m sin), the gap
+/// growing with delta = z10 - z_m (times the bound); delta = max(rho - z_m, v_c + |(v_alpha, v_beta) - z_m (cos,
+/// sin)|), rho = |(v_gamma, v_delta)|, is convex in z_m and least either where the norm is least or where the two
+/// meet.
+FaceShares ghost_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, double t) {
+  FaceShares out;
+  const Norm nn = norm_of(q);
+  const double c = q(kC), m = q(0) * fs.cs + q(1) * fs.sn - c;
+  const Vec6L dm = m_gradient(fs);
+  Vec6L v = log_barrier_share(fs.bound - nn.n - c, -nn.d - Vec6L::Unit(kC), -nn.d2, dq, t) +
+            log_barrier_share(m, dm, Mat6L::Zero(), dq, t);
+  const Eigen::Vector3d z1 = cone_share(q, dq, t);
+  v(kC) = 0;  // stationary in c exactly: the three shares of c sum to 0 (the Newton equation's row, up to rounding)
+  v(2) += z1(1);
+  v(3) += z1(2);
+  out.jacobian = v.head<4>();
+  const double rho = std::hypot(v(2), v(3));
+  const Eigen::Vector2d d(fs.cs, fs.sn), vab(v(0), v(1));
+  const double D = vab.dot(d), P = std::abs(vab(0) * d(1) - vab(1) * d(0));
+  auto need = [&](double zm) { return std::max(rho - zm, v(kC) + (vab - zm * d).norm()); };
+  double zm = std::max(D, 0.0);
+  if (rho - zm > v(kC) + std::sqrt(P * P + (zm - D) * (zm - D))) {
+    const double K = rho - v(kC);  // where rho - z = v_c + |vab - z d|, beyond the norm's least point
+    zm = (K * K - P * P - D * D) / (2 * (K - D));
+  }
+  const double delta = need(zm);
+  const double z10 = delta + zm, z60 = delta - v(kC);
+  if (!(zm >= 0) || !(z10 >= rho) || !(z60 >= (vab - zm * d).norm())) {
+    out.ok = false;
+    return out;
+  }
+  out.gap = z10 * c + v(2) * q(2) + v(3) * q(3) + zm * m + z60 * (fs.bound - c) + (v(0) - zm * fs.cs) * q(0) +
+            (v(1) - zm * fs.sn) * q(1);
+  return out;
+}
+
+}  // namespace
+
+double newton_dual_gap(const Setup& s, const NewtonPoint& p) {
+  if (s.settings.h_max || s.settings.p_inf) return kInf;
+  const int nf = s.n_faces;
+  std::vector<FaceShares> shares(static_cast<size_t>(nf));
+  int ok = 1;
+#pragma omp parallel for schedule(static) reduction(min : ok) if (nf > kParallelFaces)
+  for (int j = 0; j < nf; ++j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    const Vec6L q = local(p.point(j)), dq = local(p.direction(j));
+    FaceShares& f = shares[static_cast<size_t>(j)];
+    f = fs.ghost() ? ghost_face(q, dq, fs, p.t) : energy_face(q, dq, fs, p.t);
+    if (!f.ok) ok = 0;
+  }
+  if (ok == 0) return kInf;
+  // The objective cones' multipliers (1, -v_e / sqrt(w)) must lie in their cones: scale each mesh's v_e together.
+  std::array<double, 2> norm2{0, 0};
+  for (int j = 0; j < nf; ++j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    const double ve = shares[static_cast<size_t>(j)].epigraph(3);
+    if (!fs.ghost()) norm2[static_cast<size_t>(fs.mesh)] += ve * ve / fs.w;
+  }
+  std::array<double, 2> scale{1, 1};
+  for (size_t m = 0; m < 2; ++m) {
+    if (norm2[m] > 1) scale[m] = (1 - 1e-15) / std::sqrt(norm2[m]);
+  }
+  const double face_gaps = sum_over_faces<double>(nf, [&](int j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    const FaceShares& f = shares[static_cast<size_t>(j)];
+    if (fs.ghost()) return f.gap;
+    Eigen::Vector4d v = f.epigraph;
+    v(3) *= scale[static_cast<size_t>(fs.mesh)];
+    const FaceValues x = p.point(j);
+    // The objective cone's part of s^T z, -e_j v_e, cancels the epigraph's v_e e_j.
+    return f.gap + epigraph_gap(v, local(x), fs) - x.e * v(3);
+  });
+  if (!std::isfinite(face_gaps)) return kInf;
+  const double gap = face_gaps + p.T[0] + p.T[1];
+  // Stationarity in the positions: the residual sum_j S_j^T v_j of the Newton equation.
+  Eigen::VectorXd residual = Eigen::VectorXd::Zero(s.n_var);
+  for (int j = 0; j < nf; ++j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    const Vec6 corner = fs.S.transpose() * shares[static_cast<size_t>(j)].jacobian;
+    for (int r = 0; r < 6; ++r) {
+      const int k = fs.var[static_cast<size_t>(r)];
+      if (k >= 0) residual(k) += corner(r);
+    }
+  }
+  const double margin = residual.lpNorm<1>() * 2 * p.position_extent;
+  if (!(gap > 0) || !(margin <= 1e-3 * gap)) return kInf;
+  return gap + margin;
+}
+
+}  // namespace liftmap::subproblem
