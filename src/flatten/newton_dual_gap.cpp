@@ -5,6 +5,9 @@
 #include <limits>
 #include <vector>
 
+#include "flatten/epigraph_norm.h"
+#include "flatten/newton_system.h"
+
 namespace liftmap::subproblem {
 
 namespace {
@@ -23,8 +26,11 @@ Vec6L local(const FaceValues& f) {
   return q;
 }
 
-/// The share -(grad F + hess F dq) / t of the term F = -log(g) (g > 0, gradient dg, Hessian d2g).
-Vec6L log_barrier_share(double g, const Vec6L& dg, const Mat6L& d2g, const Vec6L& dq, double t) {
+/// The share -(grad F + hess F dq) / t of the term F = -log(g) (g > 0, gradient dg, Hessian d2g) in N variables.
+template <int N>
+Eigen::Matrix<double, N, 1> log_barrier_share(double g, const Eigen::Matrix<double, N, 1>& dg,
+                                              const Eigen::Matrix<double, N, N>& d2g,
+                                              const Eigen::Matrix<double, N, 1>& dq, double t) {
   return (dg / g * (1 - dg.dot(dq) / g) + d2g * dq / g) / t;
 }
 
@@ -67,10 +73,12 @@ Vec6L m_gradient(const FaceSetup& fs) {
 }
 
 /// What the first pass keeps of a face: the part of its gap that does not depend on the objective cones' scaling,
-/// its epigraph's share on (alpha, beta, c, e), and its share on (alpha, beta, gamma, delta) for the residual.
+/// its epigraph's share on (alpha, beta, c, e) and its values there, and its share on (alpha, beta, gamma, delta)
+/// for the residual.
 struct FaceShares {
   double gap = 0;
   Eigen::Vector4d epigraph = Eigen::Vector4d::Zero();
+  Eigen::Vector4d at = Eigen::Vector4d::Zero();
   Eigen::Vector4d jacobian = Eigen::Vector4d::Zero();
   bool ok = true;
 };
@@ -84,23 +92,20 @@ FaceShares energy_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, dou
   const double rho = std::hypot(z1(1), z1(2));
   z1(0) = std::max(z1(0), rho);
   out.gap = z1.dot(Eigen::Vector3d(q(kC), q(2), q(3)));
-  const Norm nn = norm_of(q);
-  const double r = nn.n + q(kC), m = q(0) * fs.cs + q(1) * fs.sn - q(kC), sv = 1 / m;
-  const double R = std::sqrt(r * r + sv * sv);
-  const Vec6L dr = nn.d + Vec6L::Unit(kC);
-  const Vec6L dm = m_gradient(fs);
-  const Vec6L d_norm = (r * dr - sv * sv * sv * dm) / R;  // d(1/m) = -dm / m^2
-  const Mat6L d2_norm =
-      (dr * dr.transpose() + r * nn.d2 + 3 * sv * sv * sv * sv * dm * dm.transpose() - d_norm * d_norm.transpose()) / R;
-  const Vec6L v = log_barrier_share(q(kE) - R, Vec6L::Unit(kE) - d_norm, -d2_norm, dq, t);
-  out.epigraph << v(0), v(1), -z1(0), v(kE);
+  // The epigraph term -log(e - R) on (alpha, beta, c, e).
+  const EpigraphNorm en = epigraph_norm(q(0), q(1), q(kC), fs.cs, fs.sn);
+  const Eigen::Vector4d dq4(dq(0), dq(1), dq(kC), dq(kE));
+  const Eigen::Vector4d v =
+      log_barrier_share<4>(q(kE) - en.R, Eigen::Vector4d::Unit(3) - en.d, Eigen::Matrix4d(-en.d2), dq4, t);
+  out.epigraph << v(0), v(1), -z1(0), v(3);
+  out.at << q(0), q(1), q(kC), q(kE);
   out.jacobian << v(0), v(1), z1(1), z1(2);
   return out;
 }
 
-/// The epigraph's gap for its share v = (v_alpha, v_beta, v_c, v_e) (v_e already scaled), +infinity if no
-/// multipliers of its three cones reproduce v.
-double epigraph_gap(const Eigen::Vector4d& v, const Vec6L& q, const FaceSetup& fs) {
+/// The epigraph's gap for its share v = (v_alpha, v_beta, v_c, v_e) (v_e already scaled) at the values `at` of
+/// (alpha, beta, c, e), +infinity if no multipliers of its three cones reproduce v.
+double epigraph_gap(const Eigen::Vector4d& v, const Eigen::Vector4d& at, const FaceSetup& fs) {
   const double ve = v(3), vc = v(2);
   if (!(ve > 0)) return kInf;
   const Eigen::Vector2d d(fs.cs, fs.sn);
@@ -113,7 +118,7 @@ double epigraph_gap(const Eigen::Vector4d& v, const Vec6L& q, const FaceSetup& f
   }
   if (!(a <= ve && a <= -vc)) return kInf;
   const double p = std::sqrt(ve * ve - a * a), b = -vc - a;
-  return v(0) * q(0) + v(1) * q(1) + vc * q(kC) + ve * q(kE) - 2 * std::sqrt(p * b);
+  return v.dot(at) - 2 * std::sqrt(p * b);
 }
 
 /// A ghost face: the summed share of its three terms (c >= |(gamma, delta)|, m >= 0, n <= bound - c) split with the
@@ -126,8 +131,8 @@ FaceShares ghost_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, doub
   const Norm nn = norm_of(q);
   const double c = q(kC), m = q(0) * fs.cs + q(1) * fs.sn - c;
   const Vec6L dm = m_gradient(fs);
-  Vec6L v = log_barrier_share(fs.bound - nn.n - c, -nn.d - Vec6L::Unit(kC), -nn.d2, dq, t) +
-            log_barrier_share(m, dm, Mat6L::Zero(), dq, t);
+  Vec6L v = log_barrier_share<6>(fs.bound - nn.n - c, -nn.d - Vec6L::Unit(kC), -nn.d2, dq, t) +
+            log_barrier_share<6>(m, dm, Mat6L::Zero(), dq, t);
   const Eigen::Vector3d z1 = cone_share(q, dq, t);
   v(kC) = 0;  // stationary in c exactly: the three shares of c sum to 0 (the Newton equation's row, up to rounding)
   v(2) += z1(1);
@@ -186,23 +191,20 @@ double newton_dual_gap(const Setup& s, const NewtonPoint& p) {
     if (fs.ghost()) return f.gap;
     Eigen::Vector4d v = f.epigraph;
     v(3) *= scale[static_cast<size_t>(fs.mesh)];
-    const FaceValues x = p.point(j);
     // The objective cone's part of s^T z, -e_j v_e, cancels the epigraph's v_e e_j.
-    return f.gap + epigraph_gap(v, local(x), fs) - x.e * v(3);
+    return f.gap + epigraph_gap(v, f.at, fs) - f.at(3) * v(3);
   });
   if (!std::isfinite(face_gaps)) return kInf;
   const double gap = face_gaps + p.T[0] + p.T[1];
-  // Stationarity in the positions: the residual sum_j S_j^T v_j of the Newton equation.
-  Eigen::VectorXd residual = Eigen::VectorXd::Zero(s.n_var);
+  // Stationarity in the positions: the residual sum_j S_j^T v_j of the Newton equation (negated).
+  std::vector<Eigen::Matrix<double, 6, 1>> corners(static_cast<size_t>(nf));
   for (int j = 0; j < nf; ++j) {
-    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-    const Vec6 corner = fs.S.transpose() * shares[static_cast<size_t>(j)].jacobian;
-    for (int r = 0; r < 6; ++r) {
-      const int k = fs.var[static_cast<size_t>(r)];
-      if (k >= 0) residual(k) += corner(r);
-    }
+    corners[static_cast<size_t>(j)] =
+        s.faces[static_cast<size_t>(j)].S.transpose() * shares[static_cast<size_t>(j)].jacobian;
   }
-  const double margin = residual.lpNorm<1>() * 2 * p.position_extent;
+  Eigen::MatrixXd residual = Eigen::MatrixXd::Zero(s.n_var, 1);
+  subtract_corner_rows<1>(s, *p.parts, corners, residual);
+  const double margin = residual.cwiseAbs().sum() * 2 * p.position_extent;
   if (!(gap > 0) || !(margin <= 1e-3 * gap)) return kInf;
   return gap + margin;
 }

@@ -29,6 +29,7 @@ struct NewtonPoint {
   std::function<FaceValues(int)> point;      ///< face j's variables
   std::function<FaceValues(int)> direction;  ///< their Newton step
   double position_extent = 0;                ///< max |x_k| over the unknown coordinates (see newton_dual_gap)
+  const FacePartition* parts = nullptr;      ///< the faces' partition for sums into the unknowns (must be set)
 };
 
 /// The gap s^T z of the conic form of problem (10) (three second-order cones per energy face: e >= |(r, s)|,

@@ -27,8 +27,8 @@
 namespace liftmap::subproblem {
 
 /// The rows of a face's six corner coordinates in X (#unknowns by NC); those of the fixed gauge vertex are 0.
-template <int NC>
-Eigen::Matrix<double, 6, NC> gather_corners(const FaceSetup& fs, const Eigen::MatrixXd& X) {
+template <int NC, class Derived>
+Eigen::Matrix<double, 6, NC> gather_corners(const FaceSetup& fs, const Eigen::MatrixBase<Derived>& X) {
   Eigen::Matrix<double, 6, NC> out = Eigen::Matrix<double, 6, NC>::Zero();
   for (int r = 0; r < 6; ++r) {
     const int v = fs.var[static_cast<size_t>(r)];
