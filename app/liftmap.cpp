@@ -21,7 +21,6 @@
 #include "check/check_mesh.h"
 #include "core/errors.h"
 #include "cut/write_cut.h"
-#include "flatten/sparse_cholesky.h"
 #include "io/landmarks.h"
 #include "io/output_file.h"
 #include "io/output_folder.h"
@@ -599,8 +598,6 @@ int main(int argc, char** argv) {
   liftmap_app::run_with_passive_openmp_waits(argv);
   liftmap_app::keep_freed_memory();
   try {
-    // The executable owns its process: OpenBLAS's pool (pthreads build only) at one thread during factorisations.
-    liftmap::SparseCholesky::limit_openblas_pool(true);
     return run(argc, argv);
   } catch (...) {
     std::string message;

@@ -1,103 +1,19 @@
 #include "flatten/sparse_cholesky.h"
 
-#include <dlfcn.h>  // dlsym: OpenBLAS's thread-count calls, if libblas.so.3 is OpenBLAS
 #include <omp.h>
 
 #include <cholmod.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <mutex>
+#include <cmath>
 #include <numeric>
 #include <vector>
 
 #include "core/errors.h"
+#include "flatten/supernodal_factorization.h"
 
 namespace liftmap {
-
-namespace {
-thread_local bool g_serial_regions = false;  // set by SerialBlas on the thread that runs CHOLMOD
-}
-
-bool serial_cholmod_call_active() { return g_serial_regions; }
-
-namespace {
-
-// Runs CHOLMOD single-threaded while it lives. CHOLMOD's supernodal kernels call BLAS on many small blocks, and a
-// threaded BLAS (OpenBLAS built on OpenMP, which sizes its work split by omp_get_max_threads) spends more on
-// synchronisation than it gains there (factorisation 4x slower on 2 cores). CHOLMOD itself also opens an OpenMP
-// region per supernode with a fixed num_threads(4) clause, which omp_set_num_threads does not override: on
-// camel-cow ~5900 thread wake-ups per factorisation. No active parallel levels serialises those. Both are needed:
-// with the levels alone, OpenBLAS splits its work for 2 threads, gets a team of 1 and spins forever. The
-// triangular solves (three right-hand sides) are the same kind of small-block BLAS calls.
-// OpenBLAS built on pthreads (Debian's libopenblas0-pthread, which takes over libblas.so.3 from the serial build
-// whenever both are installed) has a thread pool of its own, which neither setting reaches: OpenBLAS's own call
-// sets it to one thread while SerialBlas lives, if the program asked for it (SparseCholesky::limit_openblas_pool:
-// the pool is the process's, so the library does not touch it on its own). Measured with the pthreads build
-// (profile_flatten, camel-cow's first outer iteration, 35 factorisations in its first centring): 0.80 s of
-// factorisation with its pool, 0.60 s with it set to one thread, the same as the serial build. One SerialBlas at a time
-// in the process: Debian's serial OpenBLAS shares its work buffers between calling threads without a lock (two maps in
-// two threads gave different factors: sphere-ellipsoid maps differing by up to 0.97 in a barycentric coordinate, none
-// with the reference BLAS), and the settings saved and restored here are the process's (max-active-levels, OpenBLAS's
-// thread count), which two overlapping lifetimes would restore wrongly. Concurrent maps therefore take turns in
-// CHOLMOD's factorisations only.
-class SerialBlas {
- public:
-  SerialBlas();  // not copyable: lock_ is not
-  ~SerialBlas();
-
- private:
-  static std::mutex& process_lock();
-
-  std::lock_guard<std::mutex> lock_;  // first: held before the settings are saved, released after they are restored
-  int threads_, levels_, blas_threads_ = 0;
-};
-
-std::mutex& SerialBlas::process_lock() {
-  static std::mutex m;
-  return m;
-}
-
-/// OpenBLAS's thread-count calls, if libblas.so.3 is OpenBLAS (Debian's alternatives choose it at run time).
-struct OpenBlasThreads {
-  int (*get)() = nullptr;
-  void (*set)(int) = nullptr;
-};
-
-const OpenBlasThreads& openblas_threads() {
-  static const OpenBlasThreads calls = [] {
-    OpenBlasThreads c;
-    // dlsym returns void*: the casts to function pointers are POSIX's documented use of it.
-    c.get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    c.set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    if (c.get == nullptr || c.set == nullptr) c = {};
-    return c;
-  }();
-  return calls;
-}
-
-std::atomic<bool> g_limit_openblas_pool{false};  // SparseCholesky::limit_openblas_pool
-
-SerialBlas::SerialBlas()
-    : lock_(process_lock()), threads_(omp_get_max_threads()), levels_(omp_get_max_active_levels()) {
-  omp_set_num_threads(1);
-  omp_set_max_active_levels(0);
-  g_serial_regions = true;
-  if (g_limit_openblas_pool.load() && openblas_threads().set != nullptr) {
-    blas_threads_ = openblas_threads().get();
-    if (blas_threads_ > 1) openblas_threads().set(1);
-  }
-}
-
-SerialBlas::~SerialBlas() {
-  if (blas_threads_ > 1) openblas_threads().set(blas_threads_);
-  g_serial_regions = false;
-  omp_set_max_active_levels(levels_);
-  omp_set_num_threads(threads_);
-}
-
-}  // namespace
 
 /// How solve() shares the supernodes between two threads (plan_solve).
 struct SolvePlan {
@@ -110,40 +26,29 @@ struct SolvePlan {
   std::array<double, 3> fractions{};       ///< stored values of the factor in group 0, group 1 and the top
 };
 
-// Supernodal LL^T: the fastest CHOLMOD mode for the 2D-mesh Laplacian-like systems of the flattening stage.
-//
-// CHOLMOD is given the matrix already permuted by its own fill-reducing ordering, and factorises it in natural
-// order. Given the lower triangle of A and an ordering, cholmod_factorize first builds triu(PAP') and then its
-// transpose, two scattered copies of the whole matrix with their allocations, at every factorisation (camel-cow:
-// cholmod_transpose_sym ~15% of the time in CHOLMOD). Here one gather of the values into P A P', whose pattern
-// and source indices are built once in analyze(), replaces both.
+// Supernodal LL^T of P A P': CHOLMOD's fill-reducing ordering and symbolic factorisation (supernodes, their rows,
+// the factor's storage), our numeric factorisation (supernodal_factorization.h, on two threads) and triangular
+// solves. One gather of A's values into the lower triangle of P A P', whose pattern and source indices are built
+// once in analyze(), gives the factorisation its input.
 struct SparseCholesky::Impl {
   cholmod_common cm{};
   cholmod_factor* L = nullptr;        // factor of P A P' (natural ordering)
-  cholmod_sparse* B = nullptr;        // lower triangle of P A P', the matrix CHOLMOD factorises
+  cholmod_sparse* B = nullptr;        // lower triangle of P A P', the matrix factorised
   std::vector<int> perm;              // row i of P A P' is row perm[i] of A
   std::vector<int> source;            // B's k-th value is A's source[k]-th value
   std::vector<int> a_outer, a_inner;  // the pattern of A given to analyze()
   SolvePlan plan;                     // how solve() splits the supernodes between two threads
+  SupernodeSchedule schedule;         // how factorize() splits them
   Eigen::Index n = 0;
   bool analyzed = false;
 
   Impl() {
     cholmod_start(&cm);
-    // Failures are reported through factorize()'s return value; CHOLMOD's own warnings would only flood stdout.
+    // CHOLMOD's own warnings would only flood stdout; failures are reported by exceptions.
     cm.print = 0;
-    cm.supernodal = CHOLMOD_SUPERNODAL;
-    cm.final_asis = 1;  // keep L supernodal LL' after the factorisation: solve() reads it in that form
-    // A matrix that is not positive definite (factorize_with_shift then retries with a diagonal shift) is
-    // abandoned at the failing supernode instead of being factorised to the end.
-    cm.quick_return_if_not_posdef = 1;
-    // CHOLMOD's default supernode relaxation (nrelax 4/16/48, zrelax 0.8/0.1/0.05). Four times coarser supernodes
-    // were faster while libgomp's per-region cost came with every supernode (0.091 -> 0.048 s per factorisation
-    // on camel-cow); with the regions inline (app/inline_openmp_regions.cpp) the defaults are faster again. Measured
-    // with bench/flatten/profile_flatten, one outer iteration, alternating runs: camel-cow 31.5 -> 25.5 ms per
-    // factorisation, fandisk-bunny 101-102 -> 83-94 ms. Finer ones hold fewer explicit zeros (camel-cow: 2.36M
-    // stored values for 1.59M nonzeros of L at the defaults, 1.98M at zrelax 0.2/0.02/0.01), which the solve reads
-    // faster, but the factorisation lost more than the solve gained (19.5 + 7.9 ms against 22.9 + 6.7 ms).
+    cm.supernodal = CHOLMOD_SUPERNODAL;  // a supernodal symbolic factor: the numeric factorisation's structure
+    // CHOLMOD's default supernode relaxation (nrelax 4/16/48, zrelax 0.8/0.1/0.05), measured with CHOLMOD's own
+    // numeric factorisation: coarser or finer supernodes were not faster (docs/performance.md).
   }
   ~Impl() {
     if (L != nullptr) cholmod_free_factor(&L, &cm);
@@ -326,12 +231,12 @@ void supernodal_solve(const cholmod_factor& L, const SolvePlan& plan, Eigen::Ind
   if (k == 1) supernodal_solve<1>(L, plan, y);
 }
 
-/// Splits the supernodal elimination tree for solve(): the top (the supernodes whose subtrees are too heavy to
-/// give to one thread, from the roots down) and below it two groups of whole subtrees, of about equal numbers of
-/// stored values (the solve reads each once per direction and is bound by memory bandwidth). Independent subtrees
-/// touch disjoint unknowns except the top's. No split (plan.split false) if the top would hold more than a fifth
-/// of the values or the groups stay more unequal than 60:40, or below kParallelSolveUnknowns.
-SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
+/// Splits the supernodal elimination tree in two: the top (the supernodes whose subtrees are too heavy to give to
+/// one thread, from the roots down) and below it two groups of whole subtrees of about equal weight (`cost`: per
+/// supernode). Independent subtrees touch disjoint unknowns except the top's. No split (plan.split false) if the
+/// top would carry more than `max_top` of the whole weight or the groups stay more unequal than 60:40, or below
+/// kParallelSolveUnknowns.
+SolvePlan plan_split(const cholmod_factor& factor, Eigen::Index n, const std::vector<double>& cost, double max_top) {
   const Supernodes L(factor);
   const int ns = L.count;
   SolvePlan plan;
@@ -347,7 +252,7 @@ SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
   std::iota(first.begin(), first.end(), 0);  // the first supernode of each subtree (postorder: contiguous)
   for (int s = 0; s < ns; ++s) {
     const auto us = static_cast<size_t>(s);
-    weight[us] += static_cast<double>(L.rows_of(s)) * L.columns(s);
+    weight[us] += cost[us];
     if (L.rows_of(s) > L.columns(s)) {
       const int p = supernode_of[static_cast<size_t>(L.rows[L.pi[s] + L.columns(s)])];
       if (p <= s) return {};  // not postordered: no split
@@ -380,8 +285,8 @@ SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
     const int h = frontier.front();
     const auto uh = static_cast<size_t>(h);
     if (children[uh].empty()) return {};
-    top_weight += static_cast<double>(L.rows_of(h)) * L.columns(h);
-    if (top_weight > 0.2 * total) return {};
+    top_weight += cost[uh];
+    if (top_weight > max_top * total) return {};
     is_top[uh] = 1;
     frontier.erase(frontier.begin());
     frontier.insert(frontier.end(), children[uh].begin(), children[uh].end());
@@ -432,13 +337,40 @@ SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
   return plan;
 }
 
+/// The split of solve(): groups of equal numbers of stored values (the solve reads each once per direction and is
+/// bound by memory bandwidth), the top at most a fifth of them.
+SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
+  const Supernodes L(factor);
+  std::vector<double> values(static_cast<size_t>(L.count));
+  for (int s = 0; s < L.count; ++s) values[static_cast<size_t>(s)] = static_cast<double>(L.rows_of(s)) * L.columns(s);
+  return plan_split(factor, n, values, 0.2);
+}
+
+/// The schedule of factorize(): groups of equal flops (a supernode's column j updates the rows below it, about
+/// (rows - j)^2 multiply-adds), the top (the dense separators, which hold a larger share of the flops than of the
+/// values) at most half of them; no split: every supernode in order.
+SupernodeSchedule plan_factorization(const cholmod_factor& factor, Eigen::Index n) {
+  const Supernodes L(factor);
+  std::vector<double> flops(static_cast<size_t>(L.count));
+  for (int s = 0; s < L.count; ++s) {
+    for (int j = 0; j < L.columns(s); ++j) flops[static_cast<size_t>(s)] += std::pow(L.rows_of(s) - j, 2.0);
+  }
+  const SolvePlan plan = plan_split(factor, n, flops, 0.5);
+  SupernodeSchedule schedule;
+  if (plan.split) {
+    schedule.groups = plan.groups;
+    schedule.top = plan.top;
+  } else {
+    schedule.top.resize(static_cast<size_t>(L.count));
+    std::iota(schedule.top.begin(), schedule.top.end(), 0);
+  }
+  return schedule;
+}
+
 }  // namespace
 
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 
-void SparseCholesky::limit_openblas_pool(bool on) { g_limit_openblas_pool.store(on); }
-
-bool SparseCholesky::openblas_pool_limited() { return g_limit_openblas_pool.load(); }
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
@@ -524,6 +456,12 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
     throw PipelineError("sparse Cholesky: symbolic analysis failed");
   }
   m.plan = plan_solve(*m.L, m.n);
+  m.schedule = plan_factorization(*m.L, m.n);
+  // The numeric factor's storage (supernodal LL'), filled by factorize(); minor < n until a factorisation succeeds.
+  if (!cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, m.L, &m.cm) || m.L->xtype != CHOLMOD_REAL) {
+    throw PipelineError("sparse Cholesky: out of memory");
+  }
+  m.L->minor = 0;
   m.analyzed = true;
 }
 
@@ -538,9 +476,16 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   const auto nb = static_cast<Eigen::Index>(m.source.size());
 #pragma omp parallel for schedule(static) if (nb > 100000)
   for (Eigen::Index e = 0; e < nb; ++e) bx[e] = ax[m.source[static_cast<size_t>(e)]];
-  const SerialBlas serial;
-  cholmod_factorize(m.B, m.L, &m.cm);
-  return m.cm.status == CHOLMOD_OK && m.L->minor == m.L->n;
+  const LowerColumns b{.p = static_cast<const int*>(m.B->p), .i = static_cast<const int*>(m.B->i), .x = bx};
+  const SupernodalStructure structure{.super = static_cast<const int*>(m.L->super),
+                                      .pi = static_cast<const int*>(m.L->pi),
+                                      .px = static_cast<const int*>(m.L->px),
+                                      .rows = static_cast<const int*>(m.L->s),
+                                      .count = static_cast<int>(m.L->nsuper),
+                                      .n = static_cast<int>(m.n)};
+  const int failed = factorize_supernodal(b, structure, static_cast<double*>(m.L->x), m.schedule);
+  m.L->minor = failed < 0 ? m.L->n : static_cast<size_t>(failed);
+  return failed < 0;
 }
 
 bool SparseCholesky::has_pattern_of(const Eigen::SparseMatrix<double>& A) const {

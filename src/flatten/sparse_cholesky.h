@@ -1,8 +1,10 @@
 #pragma once
-/// The one sparse symmetric positive definite solver of liftmap: CHOLMOD's supernodal LL^T, with the symbolic
+/// The one sparse symmetric positive definite solver of liftmap: a supernodal LL^T, with CHOLMOD's symbolic
 /// analysis (fill-reducing ordering: AMD, or METIS's nested dissection for large systems) done once per sparsity
-/// pattern and a numeric refactorisation per matrix (every Newton step, every outer iteration). The triangular
-/// solves with the factor are ours (sparse_cholesky.cpp says why).
+/// pattern and a numeric refactorisation per matrix (every Newton step, every outer iteration). The numeric
+/// factorisation (supernodal_factorization.h) and the triangular solves with the factor are ours: both run on two
+/// threads where the elimination tree splits, and call no BLAS, so the factor does not depend on the machine's
+/// BLAS or its CPU kernel.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -13,8 +15,9 @@ namespace liftmap {
 
 /// Cholesky factorisation of a sparse SPD matrix that keeps its symbolic analysis across refactorisations.
 /// Only the lower triangle of the matrix is read. Usage: `analyze(A)` once, then `factorize(A)` whenever the
-/// values change (same pattern), then `solve(b)` any number of times. solve() runs on two threads where the elimination
-/// tree splits into two halves (solve_split).
+/// values change (same pattern), then `solve(b)` any number of times. factorize() and solve() run on two threads
+/// where the elimination tree splits into two halves (the factorisation's of about equal flops, the solve's of
+/// about equal stored values: solve_split), with the same arithmetic on one thread.
 class SparseCholesky {
  public:
   SparseCholesky();
@@ -44,14 +47,6 @@ class SparseCholesky {
     bool split = false;  ///< false: the solve runs on one thread (small or unbalanced tree)
     double group0 = 0, group1 = 0, top = 0;
   };
-  /// Whether factorize() sets OpenBLAS's own thread pool to one thread while CHOLMOD runs (and back after). Off by
-  /// default: the pool is the process's, so a program's other threads would see the change. It matters only for an
-  /// OpenBLAS built on pthreads (Debian's libopenblas0-pthread; the serial build has no pool), where CHOLMOD's many
-  /// small BLAS calls spend more on the pool's synchronisation than they gain (docs/performance.md). The liftmap
-  /// executable turns it on; a program that embeds the library decides for itself. Thread-safe.
-  static void limit_openblas_pool(bool on);
-  [[nodiscard]] static bool openblas_pool_limited();
-
   /// The split found by analyze().
   [[nodiscard]] SolveSplit solve_split() const;
   /// Per unknown (row of A): 0 or 1, the half of the split its column is eliminated in, or -1 if in the top. Two
@@ -64,11 +59,5 @@ class SparseCholesky {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// True on the calling thread while a SparseCholesky call runs CHOLMOD single-threaded (its OpenMP regions serialised,
-/// OpenBLAS at one thread). The library itself defines no symbol of another library; an executable that wants
-/// CHOLMOD's serialised regions to run inline, without libgomp's per-region cost, can interpose libgomp's region
-/// entry point and consult this (app/inline_openmp_regions.cpp does, for the liftmap executable and the benchmarks).
-[[nodiscard]] bool serial_cholmod_call_active();
 
 }  // namespace liftmap

@@ -19,11 +19,10 @@
 namespace liftmap {
 namespace {
 
-// SparseCholesky runs CHOLMOD single-threaded while it factorises (SerialBlas; the executable's GOMP_parallel shim,
-// app/inline_openmp_regions.cpp, is not linked here); every other region (ours, the host application's) must still
-// get its threads, and the factorisation must still be right.
+// SparseCholesky factorises in regions of its own (two threads at most) and changes no OpenMP setting: every
+// other region (ours, the host application's) must still get its threads, and the factorisation must be right.
 TEST(flatten_sparse_cholesky, FactorisesAndLeavesOtherParallelRegionsTheirThreads) {
-  const int n = 400;  // a path Laplacian plus identity: CHOLMOD opens regions for it like for the real systems
+  const int n = 400;  // a path Laplacian plus identity
   std::vector<Eigen::Triplet<double>> trip;
   for (int i = 0; i < n; ++i) {
     trip.emplace_back(i, i, 3.0);

@@ -10,7 +10,6 @@
 
 #include "disk_patches.h"
 #include "flatten/joint_flatten.h"
-#include "flatten/sparse_cholesky.h"
 
 namespace liftmap {
 namespace {
@@ -59,16 +58,6 @@ TEST(flatten_host_process, KeepsTheHostsOpenMPSettingsAndTeams) {
   EXPECT_EQ(omp_get_max_active_levels(), 2);
   EXPECT_EQ(omp_get_dynamic(), 0);
   EXPECT_EQ(team_size(), 3);
-}
-
-// OpenBLAS's thread pool is the process's: the library leaves it alone unless the program asks
-// (SparseCholesky::limit_openblas_pool, which the liftmap executable sets).
-TEST(flatten_host_process, LeavesOpenBlasPoolAloneUnlessAsked) {
-  EXPECT_FALSE(SparseCholesky::openblas_pool_limited());
-  SparseCholesky::limit_openblas_pool(true);
-  EXPECT_TRUE(SparseCholesky::openblas_pool_limited());
-  SparseCholesky::limit_openblas_pool(false);
-  EXPECT_FALSE(SparseCholesky::openblas_pool_limited());
 }
 
 }  // namespace
