@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages liftmap needs to build, test and benchmark. Idempotent: runs apt-get only when a
 # package is missing. Needs root (or sudo) on a Debian 12 machine.
-# libopenblas0-serial: CHOLMOD's supernodal factorisation spends its time in BLAS calls on small dense blocks, and
-# a fresh Debian machine has only the reference BLAS (libblas3), which libsuitesparse-dev pulls in. OpenBLAS takes
-# over libblas.so.3 through Debian's alternatives (priority 90 against 10): camel-cow, one outer iteration of
-# bench/flatten/profile_flatten, 64 -> 24 ms per factorisation, 8.77 -> 5.39 s in all. The serial build, because
-# CHOLMOD's blocks are too small for a threaded BLAS to pay (src/flatten/sparse_cholesky.cpp).
+# libopenblas0-serial: for `make test-blas-kernels`, which runs the solver tests under each OpenBLAS CPU kernel
+# (OPENBLAS_CORETYPE). liftmap itself calls no BLAS (its sparse factorisation uses Eigen's kernels), so its results
+# must not change with the kernel; CVXOPT, the differential test's independent solver, does call BLAS. OpenBLAS
+# takes over libblas.so.3 through Debian's alternatives (priority 90 against the reference BLAS's 10).
 set -euo pipefail
 packages=(
   cmake ninja-build g++ make pkg-config

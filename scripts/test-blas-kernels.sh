@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the tests labelled `solver` (the convex subproblem solvers, the joint flattening, whole maps, the CVXOPT
-# differential test) once per OpenBLAS kernel that this CPU can execute, chosen with OPENBLAS_CORETYPE. A kernel
-# changes only the rounding of the BLAS calls inside CHOLMOD, so every result the tests check must hold under each.
+# differential test) once per OpenBLAS kernel that this CPU can execute, chosen with OPENBLAS_CORETYPE. liftmap's own
+# code calls no BLAS (its sparse factorisation uses Eigen's kernels); a kernel changes the rounding of CVXOPT's BLAS
+# calls in the differential test, and of anything that would call BLAS again: every result must hold under each.
 # Fails if a kernel's run fails, or if OpenBLAS did not take the kernel asked for.
 # Usage: scripts/test-blas-kernels.sh BUILD_DIR [JOBS [KERNEL ...]] (default: every kernel the CPU supports)
 set -euo pipefail
