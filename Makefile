@@ -67,7 +67,7 @@ fuzz: deps $(BUILD_FUZZ)/build.ninja
 # Formatting and static analysis, as checked by CI.
 lint: build
 	clang-format --dry-run --Werror $(SOURCES)
-	clang-tidy -p $(BUILD) --quiet $(filter %.cpp,$(filter src/% app/%,$(SOURCES)))
+	printf '%s\n' $(filter %.cpp,$(filter src/% app/%,$(SOURCES))) | xargs -P $(JOBS) -n 8 clang-tidy -p $(BUILD) --quiet
 
 format:
 	clang-format -i $(SOURCES)
