@@ -15,15 +15,21 @@
 
 namespace liftmap {
 
-/// How solve() shares the supernodes between two threads (plan_solve).
-struct SolvePlan {
+/// A split of the supernodal elimination tree between two threads (find_split).
+struct TreeSplit {
   bool split = false;                      ///< false: one thread, all supernodes in order
   std::array<std::vector<int>, 2> groups;  ///< supernodes of each thread's subtrees, ascending
   std::vector<int> top;                    ///< the supernodes above both groups, ascending
-  std::vector<int> own_rows;               ///< per supernode of a group: its off-diagonal rows outside the top
-  std::vector<int> top_slot;               ///< per column: its index among the top's columns, or -1
-  std::vector<int> top_columns;            ///< the top's columns, by slot
-  std::array<double, 3> fractions{};       ///< stored values of the factor in group 0, group 1 and the top
+  std::array<double, 3> fractions{};       ///< the weight in group 0, group 1 and the top
+};
+
+/// How solve() shares the supernodes between two threads (plan_solve): its split and where the groups' forward
+/// updates of the top's rows go.
+struct SolvePlan {
+  TreeSplit tree;
+  std::vector<int> own_rows;     ///< per supernode of a group: its off-diagonal rows outside the top
+  std::vector<int> top_slot;     ///< per column: its index among the top's columns, or -1
+  std::vector<int> top_columns;  ///< the top's columns, by slot
 };
 
 // Supernodal LL^T of P A P': CHOLMOD's fill-reducing ordering and symbolic factorisation (supernodes, their rows,
@@ -33,6 +39,7 @@ struct SolvePlan {
 struct SparseCholesky::Impl {
   cholmod_common cm{};
   cholmod_factor* L = nullptr;        // factor of P A P' (natural ordering)
+  SupernodalStructure structure;      // L's supernodes, rows and value offsets
   cholmod_sparse* B = nullptr;        // lower triangle of P A P', the matrix factorised
   std::vector<int> perm;              // row i of P A P' is row perm[i] of A
   std::vector<int> source;            // B's k-th value is A's source[k]-th value
@@ -90,27 +97,15 @@ cholmod_sparse lower_view(const Eigen::SparseMatrix<double>& A) {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// A supernodal LL^T factor's arrays (CHOLMOD's layout): supernode s holds columns super[s] .. super[s+1]-1, its
-/// row indices are rows[pi[s] ..] (the diagonal block's own columns first) and its values the dense column-major
-/// block at x + px[s] (leading dimension nsrow).
-struct Supernodes {
-  const int* super;
-  const int* pi;
-  const int* px;
-  const int* rows;
-  const double* x;
-  int count;
-
-  explicit Supernodes(const cholmod_factor& L)
-      : super(static_cast<const int*>(L.super)),
-        pi(static_cast<const int*>(L.pi)),
-        px(static_cast<const int*>(L.px)),
-        rows(static_cast<const int*>(L.s)),
-        x(static_cast<const double*>(L.x)),
-        count(static_cast<int>(L.nsuper)) {}
-  [[nodiscard]] int columns(int s) const { return super[s + 1] - super[s]; }
-  [[nodiscard]] int rows_of(int s) const { return pi[s + 1] - pi[s]; }
-};
+/// The supernodal structure of CHOLMOD's factor L (views of its arrays).
+SupernodalStructure structure_of(const cholmod_factor& L) {
+  return {.super = static_cast<const int*>(L.super),
+          .pi = static_cast<const int*>(L.pi),
+          .px = static_cast<const int*>(L.px),
+          .rows = static_cast<const int*>(L.s),
+          .count = static_cast<int>(L.nsuper),
+          .n = static_cast<int>(L.n)};
+}
 
 // The triangular solves: per supernode, the dense triangle, then the rectangle below it as one dense product into
 // a small buffer and one scattered update per row (forward), or one gather per row and dense dot products
@@ -122,9 +117,10 @@ struct Supernodes {
 /// the others (columns of the top of the tree, when two threads share the solve) in the private `top` block, at
 /// their top_slot.
 template <int K>
-void forward_supernode(const Supernodes& L, int s, double* y, double* w, int own, double* top, const int* top_slot) {
+void forward_supernode(const SupernodalStructure& L, const double* x, int s, double* y, double* w, int own, double* top,
+                       const int* top_slot) {
   const int k1 = L.super[s], nscol = L.columns(s), nsrow = L.rows_of(s), m = nsrow - nscol;
-  const double* ls = L.x + L.px[s];
+  const double* ls = x + L.px[s];
   double* y1 = y + static_cast<ptrdiff_t>(k1) * K;
   for (int j = 0; j < nscol; ++j) {
     const double* col = ls + static_cast<ptrdiff_t>(j) * nsrow;
@@ -155,9 +151,9 @@ void forward_supernode(const Supernodes& L, int s, double* y, double* w, int own
 /// Backward step of supernode s (L^T X = Z): reads the solution at its off-diagonal rows, which belong to later
 /// supernodes (its ancestors), and writes its own columns.
 template <int K>
-void backward_supernode(const Supernodes& L, int s, double* y, double* w) {
+void backward_supernode(const SupernodalStructure& L, const double* x, int s, double* y, double* w) {
   const int k1 = L.super[s], nscol = L.columns(s), nsrow = L.rows_of(s), m = nsrow - nscol;
-  const double* ls = L.x + L.px[s];
+  const double* ls = x + L.px[s];
   double* y1 = y + static_cast<ptrdiff_t>(k1) * K;
   if (m > 0) {
     const int* r = L.rows + L.pi[s] + nscol;
@@ -187,14 +183,14 @@ void backward_supernode(const Supernodes& L, int s, double* y, double* w) {
 /// subtrees go to two threads (forward: each keeps its updates of the top's rows in a block of its own, added in
 /// afterwards), the top in between on one.
 template <int K>
-void supernodal_solve(const cholmod_factor& factor, const SolvePlan& plan, double* y) {
-  const Supernodes L(factor);
+void supernodal_solve(const cholmod_factor& factor, const SupernodalStructure& L, const SolvePlan& plan, double* y) {
+  const auto* x = static_cast<const double*>(factor.x);
   const size_t wsize = factor.maxesize * K;
-  if (!plan.split) {
+  if (!plan.tree.split) {
     std::vector<double> w(wsize);
     for (int s = 0; s < L.count; ++s)
-      forward_supernode<K>(L, s, y, w.data(), L.rows_of(s) - L.columns(s), nullptr, nullptr);
-    for (int s = L.count - 1; s >= 0; --s) backward_supernode<K>(L, s, y, w.data());
+      forward_supernode<K>(L, x, s, y, w.data(), L.rows_of(s) - L.columns(s), nullptr, nullptr);
+    for (int s = L.count - 1; s >= 0; --s) backward_supernode<K>(L, x, s, y, w.data());
     return;
   }
   const auto n_top = static_cast<ptrdiff_t>(plan.top_columns.size());
@@ -204,8 +200,9 @@ void supernodal_solve(const cholmod_factor& factor, const SolvePlan& plan, doubl
     std::vector<double> w(wsize);
     auto& mine = top[static_cast<size_t>(g)];
     mine.assign(static_cast<size_t>(n_top * K), 0.0);
-    for (const int s : plan.groups[static_cast<size_t>(g)]) {
-      forward_supernode<K>(L, s, y, w.data(), plan.own_rows[static_cast<size_t>(s)], mine.data(), plan.top_slot.data());
+    for (const int s : plan.tree.groups[static_cast<size_t>(g)]) {
+      forward_supernode<K>(L, x, s, y, w.data(), plan.own_rows[static_cast<size_t>(s)], mine.data(),
+                           plan.top_slot.data());
     }
   }
   for (ptrdiff_t k = 0; k < n_top; ++k) {
@@ -214,39 +211,40 @@ void supernodal_solve(const cholmod_factor& factor, const SolvePlan& plan, doubl
       yk[c] += top[0][static_cast<size_t>(k * K + c)] + top[1][static_cast<size_t>(k * K + c)];
   }
   std::vector<double> w(wsize);
-  for (const int s : plan.top) forward_supernode<K>(L, s, y, w.data(), L.rows_of(s) - L.columns(s), nullptr, nullptr);
-  for (auto it = plan.top.rbegin(); it != plan.top.rend(); ++it) backward_supernode<K>(L, *it, y, w.data());
+  for (const int s : plan.tree.top)
+    forward_supernode<K>(L, x, s, y, w.data(), L.rows_of(s) - L.columns(s), nullptr, nullptr);
+  for (auto it = plan.tree.top.rbegin(); it != plan.tree.top.rend(); ++it)
+    backward_supernode<K>(L, x, *it, y, w.data());
 #pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
   for (int g = 0; g < 2; ++g) {
     std::vector<double> wg(wsize);
-    const auto& group = plan.groups[static_cast<size_t>(g)];
-    for (auto it = group.rbegin(); it != group.rend(); ++it) backward_supernode<K>(L, *it, y, wg.data());
+    const auto& group = plan.tree.groups[static_cast<size_t>(g)];
+    for (auto it = group.rbegin(); it != group.rend(); ++it) backward_supernode<K>(L, x, *it, y, wg.data());
   }
 }
 
 /// supernodal_solve on k <= 3 columns, row-major.
-void supernodal_solve(const cholmod_factor& L, const SolvePlan& plan, Eigen::Index k, double* y) {
-  if (k == 3) supernodal_solve<3>(L, plan, y);
-  if (k == 2) supernodal_solve<2>(L, plan, y);
-  if (k == 1) supernodal_solve<1>(L, plan, y);
+void supernodal_solve(const cholmod_factor& factor, const SupernodalStructure& L, const SolvePlan& plan, Eigen::Index k,
+                      double* y) {
+  if (k == 3) supernodal_solve<3>(factor, L, plan, y);
+  if (k == 2) supernodal_solve<2>(factor, L, plan, y);
+  if (k == 1) supernodal_solve<1>(factor, L, plan, y);
 }
 
 /// Splits the supernodal elimination tree in two: the top (the supernodes whose subtrees are too heavy to give to
 /// one thread, from the roots down) and below it two groups of whole subtrees of about equal weight (`cost`: per
-/// supernode). Independent subtrees touch disjoint unknowns except the top's. No split (plan.split false) if the
-/// top would carry more than `max_top` of the whole weight or the groups stay more unequal than 60:40, or below
-/// kParallelSolveUnknowns.
-SolvePlan plan_split(const cholmod_factor& factor, Eigen::Index n, const std::vector<double>& cost, double max_top) {
-  const Supernodes L(factor);
+/// supernode). A group's supernodes have their off-diagonal rows in their own group first, then in the top, never
+/// in the other group. No split (split false) if the top would carry more than `max_top` of the whole weight or
+/// the groups stay more unequal than 60:40, or below kParallelSolveUnknowns.
+TreeSplit find_split(const SupernodalStructure& L, const std::vector<double>& cost, double max_top) {
   const int ns = L.count;
-  SolvePlan plan;
-  if (ns < 2 || n < kParallelSolveUnknowns) return {};
-  std::vector<int> supernode_of(static_cast<size_t>(n));
+  if (ns < 2 || L.n < kParallelSolveUnknowns) return {};
+  std::vector<int> supernode_of(static_cast<size_t>(L.n));
   for (int s = 0; s < ns; ++s)
     std::fill(&supernode_of[static_cast<size_t>(L.super[s])],
               &supernode_of[static_cast<size_t>(L.super[s + 1] - 1)] + 1, s);
-  std::vector<int> parent(static_cast<size_t>(ns), -1), first(static_cast<size_t>(ns));
-  std::vector<double> weight(static_cast<size_t>(ns));  // stored values of the subtree
+  std::vector<int> first(static_cast<size_t>(ns));
+  std::vector<double> weight(static_cast<size_t>(ns));  // cost of the subtree
   std::vector<std::vector<int>> children(static_cast<size_t>(ns));
   std::vector<int> frontier;
   std::iota(first.begin(), first.end(), 0);  // the first supernode of each subtree (postorder: contiguous)
@@ -256,7 +254,6 @@ SolvePlan plan_split(const cholmod_factor& factor, Eigen::Index n, const std::ve
     if (L.rows_of(s) > L.columns(s)) {
       const int p = supernode_of[static_cast<size_t>(L.rows[L.pi[s] + L.columns(s)])];
       if (p <= s) return {};  // not postordered: no split
-      parent[us] = p;
       weight[static_cast<size_t>(p)] += weight[us];
       first[static_cast<size_t>(p)] = std::min(first[static_cast<size_t>(p)], first[us]);
       children[static_cast<size_t>(p)].push_back(s);
@@ -291,75 +288,81 @@ SolvePlan plan_split(const cholmod_factor& factor, Eigen::Index n, const std::ve
     frontier.erase(frontier.begin());
     frontier.insert(frontier.end(), children[uh].begin(), children[uh].end());
   }
-  std::vector<int> group(static_cast<size_t>(ns), -1);
+  constexpr int kTop = 2;
+  std::vector<int> part(static_cast<size_t>(ns), -1);  // 0, 1 or kTop
   for (size_t b = 0; b < 2; ++b) {
     for (const int f : bins[b]) {
-      std::fill(&group[static_cast<size_t>(first[static_cast<size_t>(f)])], &group[static_cast<size_t>(f)] + 1,
+      std::fill(&part[static_cast<size_t>(first[static_cast<size_t>(f)])], &part[static_cast<size_t>(f)] + 1,
                 static_cast<int>(b));
     }
   }
-  plan.top_slot.assign(static_cast<size_t>(n), -1);
+  TreeSplit split;
   for (int s = 0; s < ns; ++s) {
     const auto us = static_cast<size_t>(s);
-    if (group[us] >= 0) {
-      plan.groups[static_cast<size_t>(group[us])].push_back(s);
-      continue;
+    if (part[us] < 0 && !is_top[us]) return {};  // neither in a group nor above them: not a tree, no split
+    if (part[us] < 0) part[us] = kTop;
+    (part[us] == kTop ? split.top : split.groups[static_cast<size_t>(part[us])]).push_back(s);
+  }
+  // A subtree's off-diagonal rows are its ancestors: first those inside the subtree, then (higher) the top's.
+  for (int b = 0; b < 2; ++b) {
+    for (const int s : split.groups[static_cast<size_t>(b)]) {
+      const int* r = L.rows + L.pi[s] + L.columns(s);
+      const int m = L.rows_of(s) - L.columns(s);
+      int i = 0;
+      while (i < m && part[static_cast<size_t>(supernode_of[static_cast<size_t>(r[i])])] == b) ++i;
+      while (i < m && part[static_cast<size_t>(supernode_of[static_cast<size_t>(r[i])])] == kTop) ++i;
+      if (i < m) return {};
     }
-    if (!is_top[us]) return {};  // neither in a group nor above them: cannot happen in a tree, but no split then
-    plan.top.push_back(s);
+  }
+  split.split = true;
+  split.fractions = {0, 0, top_weight / total};
+  for (size_t b = 0; b < 2; ++b) {
+    for (const int f : bins[b]) split.fractions[b] += weight[static_cast<size_t>(f)] / total;
+  }
+  return split;
+}
+
+/// The plan of solve(): groups of equal numbers of stored values (the solve reads each once per direction and is
+/// bound by memory bandwidth), the top at most a fifth of them; each group supernode's rows outside the top, and
+/// the top's columns numbered for the groups' private blocks of top updates.
+SolvePlan plan_solve(const SupernodalStructure& L) {
+  std::vector<double> values(static_cast<size_t>(L.count));
+  for (int s = 0; s < L.count; ++s) values[static_cast<size_t>(s)] = static_cast<double>(L.rows_of(s)) * L.columns(s);
+  SolvePlan plan{.tree = find_split(L, values, 0.2), .own_rows = {}, .top_slot = {}, .top_columns = {}};
+  if (!plan.tree.split) return plan;
+  plan.top_slot.assign(static_cast<size_t>(L.n), -1);
+  for (const int s : plan.tree.top) {
     for (int k = L.super[s]; k < L.super[s + 1]; ++k) {
       plan.top_slot[static_cast<size_t>(k)] = static_cast<int>(plan.top_columns.size());
       plan.top_columns.push_back(k);
     }
   }
-  plan.own_rows.assign(static_cast<size_t>(ns), 0);
-  // A subtree's off-diagonal rows are its ancestors: first those inside the subtree, then (higher) the top's.
-  for (int b = 0; b < 2; ++b) {
-    for (const int s : plan.groups[static_cast<size_t>(b)]) {
+  plan.own_rows.assign(static_cast<size_t>(L.count), 0);
+  for (const auto& group : plan.tree.groups) {
+    for (const int s : group) {
       const int* r = L.rows + L.pi[s] + L.columns(s);
       const int m = L.rows_of(s) - L.columns(s);
       int own = 0;
-      while (own < m && plan.top_slot[static_cast<size_t>(r[own])] < 0) {
-        if (group[static_cast<size_t>(supernode_of[static_cast<size_t>(r[own])])] != b) return {};
-        ++own;
-      }
-      for (int i = own; i < m; ++i) {
-        if (plan.top_slot[static_cast<size_t>(r[i])] < 0) return {};
-      }
+      while (own < m && plan.top_slot[static_cast<size_t>(r[own])] < 0) ++own;
       plan.own_rows[static_cast<size_t>(s)] = own;
     }
   }
-  plan.split = true;
-  plan.fractions = {0, 0, top_weight / total};
-  for (size_t b = 0; b < 2; ++b) {
-    for (const int f : bins[b]) plan.fractions[b] += weight[static_cast<size_t>(f)] / total;
-  }
   return plan;
-}
-
-/// The split of solve(): groups of equal numbers of stored values (the solve reads each once per direction and is
-/// bound by memory bandwidth), the top at most a fifth of them.
-SolvePlan plan_solve(const cholmod_factor& factor, Eigen::Index n) {
-  const Supernodes L(factor);
-  std::vector<double> values(static_cast<size_t>(L.count));
-  for (int s = 0; s < L.count; ++s) values[static_cast<size_t>(s)] = static_cast<double>(L.rows_of(s)) * L.columns(s);
-  return plan_split(factor, n, values, 0.2);
 }
 
 /// The schedule of factorize(): groups of equal flops (a supernode's column j updates the rows below it, about
 /// (rows - j)^2 multiply-adds), the top (the dense separators, which hold a larger share of the flops than of the
 /// values) at most half of them; no split: every supernode in order.
-SupernodeSchedule plan_factorization(const cholmod_factor& factor, Eigen::Index n) {
-  const Supernodes L(factor);
+SupernodeSchedule plan_factorization(const SupernodalStructure& L) {
   std::vector<double> flops(static_cast<size_t>(L.count));
   for (int s = 0; s < L.count; ++s) {
     for (int j = 0; j < L.columns(s); ++j) flops[static_cast<size_t>(s)] += std::pow(L.rows_of(s) - j, 2.0);
   }
-  const SolvePlan plan = plan_split(factor, n, flops, 0.5);
+  TreeSplit split = find_split(L, flops, 0.5);
   SupernodeSchedule schedule;
-  if (plan.split) {
-    schedule.groups = plan.groups;
-    schedule.top = plan.top;
+  if (split.split) {
+    schedule.groups = std::move(split.groups);
+    schedule.top = std::move(split.top);
   } else {
     schedule.top.resize(static_cast<size_t>(L.count));
     std::iota(schedule.top.begin(), schedule.top.end(), 0);
@@ -455,12 +458,13 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
   if (m.L == nullptr || m.cm.status < CHOLMOD_OK || m.L->ordering != CHOLMOD_NATURAL) {
     throw PipelineError("sparse Cholesky: symbolic analysis failed");
   }
-  m.plan = plan_solve(*m.L, m.n);
-  m.schedule = plan_factorization(*m.L, m.n);
   // The numeric factor's storage (supernodal LL'), filled by factorize(); minor < n until a factorisation succeeds.
   if (!cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, m.L, &m.cm) || m.L->xtype != CHOLMOD_REAL) {
     throw PipelineError("sparse Cholesky: out of memory");
   }
+  m.structure = structure_of(*m.L);
+  m.plan = plan_solve(m.structure);
+  m.schedule = plan_factorization(m.structure);
   m.L->minor = 0;
   m.analyzed = true;
 }
@@ -477,13 +481,7 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
 #pragma omp parallel for schedule(static) if (nb > 100000)
   for (Eigen::Index e = 0; e < nb; ++e) bx[e] = ax[m.source[static_cast<size_t>(e)]];
   const LowerColumns b{.p = static_cast<const int*>(m.B->p), .i = static_cast<const int*>(m.B->i), .x = bx};
-  const SupernodalStructure structure{.super = static_cast<const int*>(m.L->super),
-                                      .pi = static_cast<const int*>(m.L->pi),
-                                      .px = static_cast<const int*>(m.L->px),
-                                      .rows = static_cast<const int*>(m.L->s),
-                                      .count = static_cast<int>(m.L->nsuper),
-                                      .n = static_cast<int>(m.n)};
-  const int failed = factorize_supernodal(b, structure, static_cast<double*>(m.L->x), m.schedule);
+  const int failed = factorize_supernodal(b, m.structure, static_cast<double*>(m.L->x), m.schedule);
   m.L->minor = failed < 0 ? m.L->n : static_cast<size_t>(failed);
   return failed < 0;
 }
@@ -509,7 +507,7 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
     const Eigen::Index k = std::min<Eigen::Index>(3, B.cols() - c0);
     Y.resize(m.n, k);
     for (Eigen::Index i = 0; i < m.n; ++i) Y.row(i) = B.block(m.perm[static_cast<size_t>(i)], c0, 1, k);
-    supernodal_solve(*m.L, m.plan, k, Y.data());
+    supernodal_solve(*m.L, m.structure, m.plan, k, Y.data());
     for (Eigen::Index i = 0; i < m.n; ++i) X.block(m.perm[static_cast<size_t>(i)], c0, 1, k) = Y.row(i);
   }
   return X;
@@ -519,11 +517,11 @@ bool SparseCholesky::analyzed() const { return impl_->analyzed; }
 
 std::vector<int> SparseCholesky::unknown_halves() const {
   const Impl& m = *impl_;
-  if (!m.plan.split) return {};
-  const Supernodes L(*m.L);
+  if (!m.plan.tree.split) return {};
+  const SupernodalStructure& L = m.structure;
   std::vector<int> halves(static_cast<size_t>(m.n), -1);  // the top's unknowns stay -1
   for (int h = 0; h < 2; ++h) {
-    for (const int s : m.plan.groups[static_cast<size_t>(h)]) {
+    for (const int s : m.plan.tree.groups[static_cast<size_t>(h)]) {
       for (int k = L.super[s]; k < L.super[s + 1]; ++k) halves[static_cast<size_t>(m.perm[static_cast<size_t>(k)])] = h;
     }
   }
@@ -531,8 +529,8 @@ std::vector<int> SparseCholesky::unknown_halves() const {
 }
 
 SparseCholesky::SolveSplit SparseCholesky::solve_split() const {
-  const SolvePlan& p = impl_->plan;
-  return {p.split, p.fractions[0], p.fractions[1], p.fractions[2]};
+  const TreeSplit& t = impl_->plan.tree;
+  return {t.split, t.fractions[0], t.fractions[1], t.fractions[2]};
 }
 
 }  // namespace liftmap

@@ -51,8 +51,8 @@ class Factorization {
   }
 
  private:
-  [[nodiscard]] int rows_of(int s) const { return L_.pi[s + 1] - L_.pi[s]; }
-  [[nodiscard]] int columns_of(int s) const { return L_.super[s + 1] - L_.super[s]; }
+  [[nodiscard]] int rows_of(int s) const { return L_.rows_of(s); }
+  [[nodiscard]] int columns_of(int s) const { return L_.columns(s); }
   [[nodiscard]] Block block(int s) const {
     return {x_ + L_.px[s], rows_of(s), columns_of(s), Eigen::OuterStride<>(rows_of(s))};
   }

@@ -28,6 +28,9 @@ struct SupernodalStructure {
   const int* rows = nullptr;
   int count = 0;  ///< supernodes
   int n = 0;      ///< columns
+
+  [[nodiscard]] int columns(int s) const { return super[s + 1] - super[s]; }
+  [[nodiscard]] int rows_of(int s) const { return pi[s + 1] - pi[s]; }
 };
 
 /// The lower triangle of an n by n matrix in compressed columns (rows of column c at i[p[c]] .. i[p[c+1]-1], each
