@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 #include <vector>
 
 #include "core/errors.h"
@@ -46,6 +47,7 @@ struct SparseCholesky::Impl {
   std::vector<int> a_outer, a_inner;  // the pattern of A given to analyze()
   SolvePlan plan;                     // how solve() splits the supernodes between two threads
   SupernodeSchedule schedule;         // how factorize() splits them
+  DenseKernels kernels = DenseKernels::kAuto;
   Eigen::Index n = 0;
   bool analyzed = false;
 
@@ -372,7 +374,11 @@ SupernodeSchedule plan_factorization(const SupernodalStructure& L) {
 
 }  // namespace
 
-SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+SparseCholesky::SparseCholesky(DenseKernels kernels) : impl_(std::make_unique<Impl>()) {
+  if (kernels == DenseKernels::kAvx2 && !avx2_kernels_available())
+    throw std::invalid_argument("sparse Cholesky: this build or this CPU has no AVX2 kernels");
+  impl_->kernels = kernels;
+}
 
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
@@ -481,7 +487,7 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
 #pragma omp parallel for schedule(static) if (nb > 100000)
   for (Eigen::Index e = 0; e < nb; ++e) bx[e] = ax[m.source[static_cast<size_t>(e)]];
   const LowerColumns b{.p = static_cast<const int*>(m.B->p), .i = static_cast<const int*>(m.B->i), .x = bx};
-  const int failed = factorize_supernodal(b, m.structure, static_cast<double*>(m.L->x), m.schedule);
+  const int failed = factorize_supernodal(b, m.structure, static_cast<double*>(m.L->x), m.schedule, m.kernels);
   m.L->minor = failed < 0 ? m.L->n : static_cast<size_t>(failed);
   return failed < 0;
 }

@@ -11,6 +11,8 @@
 #include <memory>
 #include <vector>
 
+#include "flatten/supernodal_factorization.h"
+
 namespace liftmap {
 
 /// Cholesky factorisation of a sparse SPD matrix that keeps its symbolic analysis across refactorisations.
@@ -20,7 +22,9 @@ namespace liftmap {
 /// about equal stored values: solve_split), with the same arithmetic on one thread.
 class SparseCholesky {
  public:
-  SparseCholesky();
+  /// `kernels`: the dense kernels of the numeric factorisation (kAuto: AVX2 with FMA where the CPU has them).
+  /// \throw std::invalid_argument if kAvx2 is asked for and avx2_kernels_available() is false.
+  explicit SparseCholesky(DenseKernels kernels = DenseKernels::kAuto);
   ~SparseCholesky();
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;

@@ -1,152 +1,40 @@
 #include "flatten/supernodal_factorization.h"
 
-#include <omp.h>
+#include <stdexcept>
 
-#include <Eigen/Cholesky>
-#include <Eigen/Core>
-#include <algorithm>
-#include <cstddef>
+#include "flatten/supernodal_numeric.h"
 
 namespace liftmap {
 
 namespace {
 
-using Block = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
-using ConstBlock = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
-
-/// One thread's scratch: the row map of the supernode being factorised and the update block.
-struct Workspace {
-  std::vector<int> position;  // row -> its index in the current supernode's rows
-  Eigen::MatrixXd update;
-};
-
-/// Per supernode: the first supernode whose update to it is pending (-1: none). Each thread links into its own
-/// lists; the top reads all three.
-using Lists = std::vector<int>;
-
-/// The factorisation's state shared by both threads: each thread writes only its own supernodes' blocks, links and
-/// positions.
-class Factorization {
- public:
-  Factorization(const LowerColumns& B, const SupernodalStructure& L, double* x) : B_(B), L_(L), x_(x) {
-    supernode_of_.resize(static_cast<size_t>(L.n));
-    for (int s = 0; s < L.count; ++s) {
-      std::fill(supernode_of_.begin() + L.super[s], supernode_of_.begin() + L.super[s + 1], s);
-    }
-    next_.assign(static_cast<size_t>(L.count), -1);
-    position_.assign(static_cast<size_t>(L.count), 0);
-  }
-
-  /// Factorises `order`'s supernodes (ascending), taking their pending updates from every list of `from` and
-  /// linking each finished supernode into `to`. \return -1, or the first column of a failing supernode.
-  int run(const std::vector<int>& order, const std::vector<Lists*>& from, Lists& to, Workspace& w) {
-    w.position.resize(static_cast<size_t>(L_.n));
-    for (const int s : order) {
-      scatter_columns(s, w);
-      for (Lists* lists : from) apply_pending_updates(s, *lists, to, w);
-      if (!factorize_block(s)) return L_.super[s];
-      link_to_next_row(s, L_.super[s + 1] - L_.super[s], to);
-    }
-    return -1;
-  }
-
- private:
-  [[nodiscard]] int rows_of(int s) const { return L_.rows_of(s); }
-  [[nodiscard]] int columns_of(int s) const { return L_.columns(s); }
-  [[nodiscard]] Block block(int s) const {
-    return {x_ + L_.px[s], rows_of(s), columns_of(s), Eigen::OuterStride<>(rows_of(s))};
-  }
-
-  /// Step 1: L_s = B's columns of s, zero elsewhere; the row map of s into w.
-  void scatter_columns(int s, Workspace& w) const {
-    const int* rows = L_.rows + L_.pi[s];
-    for (int i = 0; i < rows_of(s); ++i) w.position[static_cast<size_t>(rows[i])] = i;
-    Block Ls = block(s);
-    Ls.setZero();
-    for (int k = L_.super[s]; k < L_.super[s + 1]; ++k) {
-      for (int e = B_.p[k]; e < B_.p[k + 1]; ++e)
-        Ls(w.position[static_cast<size_t>(B_.i[e])], k - L_.super[s]) = B_.x[e];
-    }
-  }
-
-  /// Step 2 for every supernode pending in lists[s].
-  void apply_pending_updates(int s, Lists& lists, Lists& to, Workspace& w) {
-    int d = lists[static_cast<size_t>(s)];
-    lists[static_cast<size_t>(s)] = -1;
-    while (d >= 0) {
-      const int after = next_[static_cast<size_t>(d)];
-      subtract_update(d, s, w);
-      link_to_next_row(d, position_[static_cast<size_t>(d)], to);
-      d = after;
-    }
-  }
-
-  /// L_s -= L_d[R_d >= k1] L_d[k1 <= R_d < k2]^T, scattered by rows; d's position moves past k2.
-  void subtract_update(int d, int s, Workspace& w) {
-    const int k1 = L_.super[s], k2 = L_.super[s + 1], nd = rows_of(d);
-    const int* rows = L_.rows + L_.pi[d];
-    const int p1 = position_[static_cast<size_t>(d)];
-    int p2 = p1;
-    while (p2 < nd && rows[p2] < k2) ++p2;
-    const int n1 = p2 - p1, n2 = nd - p1;
-    const ConstBlock Ld(x_ + L_.px[d], nd, columns_of(d), Eigen::OuterStride<>(nd));
-    w.update.resize(n2, n1);
-    const auto top = Ld.middleRows(p1, n1);
-    w.update.topRows(n1).triangularView<Eigen::Lower>() = top * top.transpose();
-    w.update.bottomRows(n2 - n1).noalias() = Ld.middleRows(p2, n2 - n1) * top.transpose();
-    Block Ls = block(s);
-    for (int j = 0; j < n1; ++j) {
-      auto column = Ls.col(rows[p1 + j] - k1);
-      for (int i = j; i < n2; ++i) column(w.position[static_cast<size_t>(rows[p1 + i])]) -= w.update(i, j);
-    }
-    position_[static_cast<size_t>(d)] = p2;
-  }
-
-  /// Step 3: L_11 = chol(top square), L_21 = L_21 L_11^-T. False if the square is not positive definite.
-  bool factorize_block(int s) const {
-    Block Ls = block(s);
-    const int nc = columns_of(s);
-    auto square = Ls.topRows(nc);
-    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd, 0, Eigen::OuterStride<>>> llt(square);
-    if (llt.info() != Eigen::Success) return false;
-    if (rows_of(s) > nc) {
-      square.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(Ls.bottomRows(rows_of(s) - nc));
-    }
-    return true;
-  }
-
-  /// Puts d (whose rows before `at` are done) in the list of the supernode holding its row `at`, if any.
-  void link_to_next_row(int d, int at, Lists& to) {
-    position_[static_cast<size_t>(d)] = at;
-    if (at >= rows_of(d)) return;
-    const int target = supernode_of_[static_cast<size_t>(L_.rows[L_.pi[d] + at])];
-    next_[static_cast<size_t>(d)] = to[static_cast<size_t>(target)];
-    to[static_cast<size_t>(target)] = d;
-  }
-
-  const LowerColumns& B_;
-  const SupernodalStructure& L_;
-  double* x_;
-  std::vector<int> supernode_of_, next_, position_;
-};
+SupernodeOrder order_of(const std::vector<int>& supernodes) {
+  return {.supernodes = supernodes.data(), .count = static_cast<int>(supernodes.size())};
+}
 
 }  // namespace
 
+bool avx2_kernels_available() {
+#ifdef LIFTMAP_AVX2_KERNELS
+  // GCC's and clang's checks include the operating system's support for the AVX registers (XGETBV).
+  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return available;
+#else
+  return false;
+#endif
+}
+
 int factorize_supernodal(const LowerColumns& B, const SupernodalStructure& L, double* x,
-                         const SupernodeSchedule& schedule) {
-  Factorization f(B, L, x);
-  std::array<Lists, 3> lists;
-  for (Lists& l : lists) l.assign(static_cast<size_t>(L.count), -1);
-  std::array<Workspace, 2> work;
-  std::array<int, 2> failed{-1, -1};
-#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
-  for (int g = 0; g < 2; ++g) {
-    const auto ug = static_cast<size_t>(g);
-    failed[ug] = f.run(schedule.groups[ug], {&lists[ug]}, lists[ug], work[ug]);
-  }
-  if (failed[0] >= 0) return failed[0];
-  if (failed[1] >= 0) return failed[1];
-  return f.run(schedule.top, {&lists[0], &lists[1], &lists[2]}, lists[2], work[0]);
+                         const SupernodeSchedule& schedule, DenseKernels kernels) {
+  if (kernels == DenseKernels::kAvx2 && !avx2_kernels_available())
+    throw std::invalid_argument("factorize_supernodal: this build or this CPU has no AVX2 kernels");
+  const SupernodeOrder group0 = order_of(schedule.groups[0]), group1 = order_of(schedule.groups[1]),
+                       top = order_of(schedule.top);
+#ifdef LIFTMAP_AVX2_KERNELS
+  if (kernels != DenseKernels::kBaseline && avx2_kernels_available())
+    return avx2::factorize_numeric(B, L, x, group0, group1, top);
+#endif
+  return baseline::factorize_numeric(B, L, x, group0, group1, top);
 }
 
 }  // namespace liftmap

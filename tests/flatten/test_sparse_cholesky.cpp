@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCore>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "flatten/sparse_cholesky.h"
@@ -53,11 +54,12 @@ Eigen::MatrixXd random_rhs(Eigen::Index n, unsigned seed) {
   return B;
 }
 
-/// Solves A X = B with the given number of threads.
-Eigen::MatrixXd solve_with_threads(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, int threads) {
+/// Solves A X = B with the given number of threads and dense kernels.
+Eigen::MatrixXd solve_with_threads(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, int threads,
+                                   DenseKernels kernels = DenseKernels::kAuto) {
   const int before = omp_get_max_threads();
   omp_set_num_threads(threads);
-  SparseCholesky c;
+  SparseCholesky c(kernels);
   c.analyze(A);
   EXPECT_TRUE(c.factorize(A));
   Eigen::MatrixXd X = c.solve(B);
@@ -98,9 +100,34 @@ TEST(flatten_sparse_cholesky, SmallSystemAgreesWithDenseCholesky) {
 TEST(flatten_sparse_cholesky, SameBitsOnOneThreadAndTwo) {
   const Eigen::SparseMatrix<double> A = grid_matrix(90, 70, 1e-3, 11);
   const Eigen::MatrixXd B = random_rhs(A.rows(), 11);
-  const Eigen::MatrixXd one = solve_with_threads(A, B, 1);
-  const Eigen::MatrixXd two = solve_with_threads(A, B, 2);
-  EXPECT_TRUE(one == two);
+  for (const DenseKernels kernels : {DenseKernels::kBaseline, DenseKernels::kAuto}) {
+    const Eigen::MatrixXd one = solve_with_threads(A, B, 1, kernels);
+    const Eigen::MatrixXd two = solve_with_threads(A, B, 2, kernels);
+    EXPECT_TRUE(one == two) << "kernels " << static_cast<int>(kernels);
+  }
+}
+
+// The AVX2 kernels (where the CPU has them) solve as well as the baseline ones, and are the ones kAuto runs:
+// their rounding differs (FMA), so the solutions agree to the problem's conditioning, not bit for bit. Without
+// them, asking for them is refused.
+TEST(flatten_sparse_cholesky, BothDenseKernelsSolve) {
+  if (!avx2_kernels_available()) {
+    EXPECT_THROW(SparseCholesky{DenseKernels::kAvx2}, std::invalid_argument);
+    return;
+  }
+  for (unsigned seed = 1; seed <= 2; ++seed) {
+    const Eigen::SparseMatrix<double> A = grid_matrix(90, 70, 1e-3, seed);
+    const Eigen::MatrixXd B = random_rhs(A.rows(), seed);
+    const Eigen::MatrixXd baseline = solve_with_threads(A, B, 2, DenseKernels::kBaseline);
+    const Eigen::MatrixXd avx2 = solve_with_threads(A, B, 2, DenseKernels::kAvx2);
+    const Eigen::MatrixXd automatic = solve_with_threads(A, B, 2, DenseKernels::kAuto);
+    for (const Eigen::MatrixXd* X : {&baseline, &avx2}) {
+      EXPECT_LT((A * *X - B).norm() / (B.norm() + A.norm() * X->norm()), 1e-13) << "seed " << seed;
+    }
+    EXPECT_FALSE(baseline == avx2) << "the same bits: did the AVX2 kernels run?";
+    EXPECT_TRUE(automatic == avx2);
+    EXPECT_LT((baseline - avx2).norm(), 1e-6 * baseline.norm()) << "seed " << seed;
+  }
 }
 
 // A matrix that is not positive definite is reported, wherever the failing pivot lies (either half of the split or

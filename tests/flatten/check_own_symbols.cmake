@@ -1,0 +1,35 @@
+# Fails if an object defines a symbol that other objects may define too, outside the namespaces it owns: the
+# linker keeps one copy of such a symbol (a template instance, an inline function), and the copy compiled for AVX2
+# would then run on every CPU. Used on the AVX2 build of the factorisation's arithmetic (src/flatten/CMakeLists.txt).
+# Usage: cmake -DNM=nm -DOBJECTS="a.o;b.o" -DOWN="18liftmap_eigen_avx2;_ZN7liftmap4avx2" -P check_own_symbols.cmake
+foreach(object IN LISTS OBJECTS)
+  execute_process(COMMAND ${NM} --defined-only ${object} OUTPUT_VARIABLE symbols RESULT_VARIABLE failed)
+  if(failed)
+    message(FATAL_ERROR "${NM} could not read ${object}")
+  endif()
+  string(REPLACE "\n" ";" lines "${symbols}")
+  set(count 0)
+  foreach(line IN LISTS lines)
+    # Global, weak and unique symbols: upper-case types, and u, v, w. Local ones (lower case) are the object's own.
+    if(NOT line MATCHES "^[0-9a-f]* ([A-Zuvw]) (.*)$")
+      continue()
+    endif()
+    set(name "${CMAKE_MATCH_2}")
+    math(EXPR count "${count} + 1")
+    set(owned FALSE)
+    foreach(prefix IN LISTS OWN)
+      string(FIND "${name}" "${prefix}" at)
+      if(at GREATER_EQUAL 0)
+        set(owned TRUE)
+      endif()
+    endforeach()
+    # The C++ runtime's personality routine's reference: the same pointer in every object.
+    if(NOT owned AND NOT name STREQUAL "DW.ref.__gxx_personality_v0")
+      message(FATAL_ERROR "${object} defines ${name}, outside ${OWN}")
+    endif()
+  endforeach()
+  if(count EQUAL 0)
+    message(FATAL_ERROR "${object} defines no global symbol: not the object expected")
+  endif()
+  message(STATUS "${object}: ${count} global symbols, all its own")
+endforeach()
