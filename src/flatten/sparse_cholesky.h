@@ -4,7 +4,7 @@
 /// pattern and a numeric refactorisation per matrix (every Newton step, every outer iteration). The numeric
 /// factorisation (supernodal_factorization.h) and the triangular solves with the factor are ours: both run on two
 /// threads where the elimination tree splits, and call no BLAS, so the factor does not depend on the machine's
-/// BLAS or its CPU kernel.
+/// BLAS; its dense kernels are AVX2 ones where the CPU has AVX2 and FMA (DenseKernels).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

@@ -11,7 +11,8 @@
 ///   3. factorised: L_11 = chol(L_s's top square), L_21 = L_s's rows below times L_11^-T,
 /// after which s waits in the list of the supernode holding its next row. The dense products are Eigen's, not a
 /// BLAS's: two threads can run them at once (Debian's serial OpenBLAS cannot be called from two), and the factor
-/// does not depend on which BLAS or which CPU kernel the machine has.
+/// does not depend on which BLAS the machine has. They are compiled twice (supernodal_numeric.h), for baseline
+/// x86-64 and for AVX2 with FMA, the latter taken where the CPU has both: the factor's last bits depend on that.
 
 #include <array>
 #include <vector>
