@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <numeric>
-#include <stdexcept>
 #include <vector>
 
 #include "core/errors.h"
@@ -301,8 +300,10 @@ TreeSplit find_split(const SupernodalStructure& L, const std::vector<double>& co
   TreeSplit split;
   for (int s = 0; s < ns; ++s) {
     const auto us = static_cast<size_t>(s);
-    if (part[us] < 0 && !is_top[us]) return {};  // neither in a group nor above them: not a tree, no split
-    if (part[us] < 0) part[us] = kTop;
+    if (part[us] < 0) {
+      if (!is_top[us]) return {};  // neither in a group nor above them: not a tree, no split
+      part[us] = kTop;
+    }
     (part[us] == kTop ? split.top : split.groups[static_cast<size_t>(part[us])]).push_back(s);
   }
   // A subtree's off-diagonal rows are its ancestors: first those inside the subtree, then (higher) the top's.
@@ -375,8 +376,7 @@ SupernodeSchedule plan_factorization(const SupernodalStructure& L) {
 }  // namespace
 
 SparseCholesky::SparseCholesky(DenseKernels kernels) : impl_(std::make_unique<Impl>()) {
-  if (kernels == DenseKernels::kAvx2 && !avx2_kernels_available())
-    throw std::invalid_argument("sparse Cholesky: this build or this CPU has no AVX2 kernels");
+  require_dense_kernels(kernels);
   impl_->kernels = kernels;
 }
 

@@ -24,10 +24,14 @@ bool avx2_kernels_available() {
 #endif
 }
 
+void require_dense_kernels(DenseKernels kernels) {
+  if (kernels == DenseKernels::kAvx2 && !avx2_kernels_available())
+    throw std::invalid_argument("dense kernels: AVX2 asked for, but this build or this CPU has no AVX2 kernels");
+}
+
 int factorize_supernodal(const LowerColumns& B, const SupernodalStructure& L, double* x,
                          const SupernodeSchedule& schedule, DenseKernels kernels) {
-  if (kernels == DenseKernels::kAvx2 && !avx2_kernels_available())
-    throw std::invalid_argument("factorize_supernodal: this build or this CPU has no AVX2 kernels");
+  require_dense_kernels(kernels);
   const SupernodeOrder group0 = order_of(schedule.groups[0]), group1 = order_of(schedule.groups[1]),
                        top = order_of(schedule.top);
 #ifdef LIFTMAP_AVX2_KERNELS

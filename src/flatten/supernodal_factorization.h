@@ -60,6 +60,10 @@ enum class DenseKernels {
 /// Whether this build has the AVX2 kernels (x86-64) and the CPU runs them (AVX2 and FMA, enabled by the OS).
 [[nodiscard]] bool avx2_kernels_available();
 
+/// Refuses kernels this build or CPU cannot run.
+/// \throw std::invalid_argument if `kernels` is kAvx2 and avx2_kernels_available() is false.
+void require_dense_kernels(DenseKernels kernels);
+
 /// Computes L with L L^T = B into x (the structure's values, every supernode's block overwritten). The arithmetic
 /// depends on the schedule and the kernels, not on the number of threads: one thread runs the groups one after
 /// the other. The two kernels round differently (FMA), so a factor's last bits depend on the CPU under
