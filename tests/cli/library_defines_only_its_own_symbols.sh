@@ -6,9 +6,10 @@
 # clash with the host's); weak symbols (template instances, inline functions) are allowed, since the linker merges
 # them with the host's.
 #
-# --weak-too counts weak and unique symbols as well, for an object compiled with other flags than the rest (the AVX2
-# build of the factorisation's arithmetic): the linker keeps one copy of a weak symbol, and that object's copy would
-# then run on every CPU. The C++ runtime's personality reference (the same pointer in every object) is allowed.
+# --weak-too counts every global symbol (nm's upper-case types: common, indirect and absolute ones too) and the weak
+# and unique ones (u, v, w), for an object compiled with other flags than the rest (the AVX2 build of the
+# factorisation's arithmetic): the linker keeps one copy of a weak symbol, and that object's copy would then run on
+# every CPU. The C++ runtime's personality reference (the same pointer in every object) is allowed.
 # --own REGEX replaces the owned names: an extended regular expression matched against the mangled name.
 # Every input must define at least one such symbol, or it is not the file expected.
 #
@@ -18,7 +19,7 @@ types='^[TDBRGS]$'
 own='^_Z(N|NK|ZN|ZNK|GVZN|GVZNK|TVN|TSN|TIN|THN)?7liftmap'
 while [ $# -gt 0 ]; do
   case "$1" in
-    --weak-too) types='^[TDBRGSVWuvw]$'; shift ;;
+    --weak-too) types='^[A-Zuvw]$'; shift ;;
     --own) own="$2"; shift 2 ;;
     *) break ;;
   esac
