@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <exception>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -88,6 +89,54 @@ class LiftedBijection::OneWay {
     return {};
   }
 
+  /// evaluate() at every point; the interior points of one edge share the lift of that edge (lift_edge).
+  [[nodiscard]] std::vector<SurfacePoint> evaluate_all(const std::vector<SurfacePoint>& points) const {
+    std::vector<SurfacePoint> out(points.size());
+    // The interior edge points, grouped by edge (in input order within an edge), and every other point alone.
+    std::vector<size_t> order;
+    std::vector<size_t> singles;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const SurfacePoint& p = points[i];
+      (p.kind == SurfacePoint::Kind::kEdge && p.t > 0.0 && p.t < 1.0 ? order : singles).push_back(i);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return points[a].edge.idx < points[b].edge.idx; });
+    std::vector<size_t> group_start;  // groups of `order` with one edge: [group_start[g], group_start[g + 1])
+    for (size_t k = 0; k < order.size(); ++k) {
+      if (k == 0 || points[order[k]].edge != points[order[k - 1]].edge) group_start.push_back(k);
+    }
+    group_start.push_back(order.size());
+    const auto n_groups = static_cast<std::ptrdiff_t>(group_start.size()) - 1;
+    const auto n_singles = static_cast<std::ptrdiff_t>(singles.size());
+    std::exception_ptr failed;
+#pragma omp parallel
+    {
+#pragma omp for schedule(dynamic, 64) nowait
+      for (std::ptrdiff_t g = 0; g < n_groups; ++g) {
+        try {
+          const size_t first = group_start[static_cast<size_t>(g)], last = group_start[static_cast<size_t>(g) + 1];
+          const EdgeId e = points[order[first]].edge;
+          const LiftTrace trace = lift_edge(e);
+          for (size_t k = first; k < last; ++k) out[order[k]] = point_on_edge_lift(e, trace, points[order[k]].t);
+        } catch (...) {
+#pragma omp critical(liftmap_evaluate_all)
+          failed = std::current_exception();
+        }
+      }
+#pragma omp for schedule(dynamic, 256)
+      for (std::ptrdiff_t k = 0; k < n_singles; ++k) {
+        try {
+          out[singles[static_cast<size_t>(k)]] = evaluate(points[singles[static_cast<size_t>(k)]]);
+        } catch (...) {
+#pragma omp critical(liftmap_evaluate_all)
+          failed = std::current_exception();
+        }
+      }
+    }
+    if (failed) std::rethrow_exception(failed);
+    return out;
+  }
+
  private:
   static PathLifter make_lifter(const Mesh& target, const Eigen::MatrixXd& X_target, const std::string& map_name) {
     try {
@@ -157,19 +206,30 @@ class LiftedBijection::OneWay {
     }
   }
 
+  /// The lift of edge e's segment x(tail) -> x(head), from the tail's image.
+  [[nodiscard]] LiftTrace lift_edge(EdgeId e) const {
+    const HalfedgeId h = Mesh::halfedge(e);
+    LiftTrace trace;
+    lifter_.lift_segment(images_[source_.tail(h)], x(source_.tail(h)), x(source_.head(h)), &trace);
+    return trace;
+  }
+
+  /// The point at parameter t in (0, 1) of edge e, found on the piece of its lift (lift_edge) whose parameter range
+  /// holds t.
+  [[nodiscard]] SurfacePoint point_on_edge_lift(EdgeId e, const LiftTrace& trace, double t) const {
+    const HalfedgeId h = Mesh::halfedge(e);
+    size_t k = 0;
+    while (k + 1 < trace.faces.size() && trace.s[k + 1] < t) ++k;
+    return lifter_.face_point(trace.faces[k], (1.0 - t) * x(source_.tail(h)) + t * x(source_.head(h)));
+  }
+
   /// The edge's image is the lift of the segment x(tail) -> x(head); the point is found on the piece of that
   /// lifted path whose parameter range holds t.
   [[nodiscard]] SurfacePoint evaluate_edge(EdgeId e, double t) const {
     const HalfedgeId h = Mesh::halfedge(e);
-    const VertexId u = source_.tail(h);
-    const VertexId w = source_.head(h);
-    if (t <= 0.0) return images_[u];
-    if (t >= 1.0) return images_[w];
-    LiftTrace trace;
-    lifter_.lift_segment(images_[u], x(u), x(w), &trace);
-    size_t k = 0;
-    while (k + 1 < trace.faces.size() && trace.s[k + 1] < t) ++k;
-    return lifter_.face_point(trace.faces[k], (1.0 - t) * x(u) + t * x(w));
+    if (t <= 0.0) return images_[source_.tail(h)];
+    if (t >= 1.0) return images_[source_.head(h)];
+    return point_on_edge_lift(e, lift_edge(e), t);
   }
 
   [[nodiscard]] SurfacePoint evaluate_face(FaceId f, std::array<double, 3> bary) const {
@@ -278,6 +338,12 @@ const VertexData<SurfacePoint>& LiftedBijection::f() const { return f_->images()
 const VertexData<SurfacePoint>& LiftedBijection::g() const { return g_->images(); }
 SurfacePoint LiftedBijection::evaluate_f(const SurfacePoint& x) const { return f_->evaluate(x); }
 SurfacePoint LiftedBijection::evaluate_g(const SurfacePoint& y) const { return g_->evaluate(y); }
+std::vector<SurfacePoint> LiftedBijection::evaluate_f(const std::vector<SurfacePoint>& x) const {
+  return f_->evaluate_all(x);
+}
+std::vector<SurfacePoint> LiftedBijection::evaluate_g(const std::vector<SurfacePoint>& y) const {
+  return g_->evaluate_all(y);
+}
 
 LiftedVertexMaps lift_bijection(const Mesh& M, const Eigen::MatrixXd& Phi, const Mesh& N, const Eigen::MatrixXd& Psi,
                                 const Eigen::MatrixXi& nu, const LiftOptions& options) {

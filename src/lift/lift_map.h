@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "core/mesh.h"
 #include "core/surface_point.h"
@@ -65,6 +66,14 @@ class LiftedBijection {
   [[nodiscard]] SurfacePoint evaluate_f(const SurfacePoint& x) const;
   /// g at any point y of N^, as `evaluate_f`.
   [[nodiscard]] SurfacePoint evaluate_g(const SurfacePoint& y) const;
+
+  /// f at many points of M^: element k is evaluate_f(x[k]), bitwise, but the points on one edge share a single lift
+  /// of that edge (evaluate_f lifts the whole edge for each), so n points on an edge crossing c faces cost one walk
+  /// of c faces instead of n. Runs on the caller's OpenMP threads.
+  /// \pre as evaluate_f, for every point. \throw as evaluate_f.
+  [[nodiscard]] std::vector<SurfacePoint> evaluate_f(const std::vector<SurfacePoint>& x) const;
+  /// g at many points of N^, as the batch `evaluate_f`.
+  [[nodiscard]] std::vector<SurfacePoint> evaluate_g(const std::vector<SurfacePoint>& y) const;
 
  private:
   class OneWay;

@@ -51,13 +51,15 @@ double image_distance(const Mesh& target, const Eigen::MatrixXd& V, const Surfac
 double disk_agreement(const MapResult& map, const DiskOverlay& disk) {
   const double unit_a = std::sqrt(total_area(map.disk_va, map.cut.a.F_cut));
   const double unit_b = std::sqrt(total_area(map.disk_vb, map.cut.b.F_cut));
+  const std::vector<SurfacePoint> f = map.bijection->evaluate_f(disk.on_m);
+  const std::vector<SurfacePoint> g = map.bijection->evaluate_g(disk.on_n);
   double worst = 0;
   const auto n = static_cast<int>(disk.on_m.size());
 #pragma omp parallel for schedule(static) reduction(max : worst)
   for (int k = 0; k < n; ++k) {
     const auto i = static_cast<size_t>(k);
-    const double ef = image_distance(map.disk_b, map.disk_vb, map.bijection->evaluate_f(disk.on_m[i]), disk.on_n[i]);
-    const double eg = image_distance(map.disk_a, map.disk_va, map.bijection->evaluate_g(disk.on_n[i]), disk.on_m[i]);
+    const double ef = image_distance(map.disk_b, map.disk_vb, f[i], disk.on_n[i]);
+    const double eg = image_distance(map.disk_a, map.disk_va, g[i], disk.on_m[i]);
     worst = std::max({worst, ef / unit_b, eg / unit_a});
   }
   return worst;

@@ -249,6 +249,56 @@ TEST(LiftMap, TuttePairOfCamelAndCowPatchesEqualsPointLocation) {
   check_bijection(p, ms, lift);
 }
 
+/// The same point to the last bit: kind, element and coordinates.
+bool identical(const SurfacePoint& a, const SurfacePoint& b) {
+  if (a.kind != b.kind) return false;
+  switch (a.kind) {
+    case K::kVertex:
+      return a.vertex == b.vertex;
+    case K::kEdge:
+      return a.edge == b.edge && a.t == b.t;
+    case K::kFace:
+      return a.face == b.face && a.bary == b.bary;
+  }
+  return false;
+}
+
+/// Points of every kind on src: its vertices, several points on every edge (both ends, near both ends, inside; two
+/// or more per edge, as an overlay has) and face points, in an order that mixes edges.
+std::vector<SurfacePoint> mixed_points(const Mesh& src) {
+  std::vector<SurfacePoint> pts;
+  for (int v = 0; v < src.n_vertices(); v += 3) pts.push_back(SurfacePoint::at_vertex(VertexId(v)));
+  for (const double t : {0.375, 0.0, 1e-13, 0.5, 1 - 1e-13, 1.0, 0.8125}) {
+    for (int e = src.n_edges() - 1; e >= 0; --e) pts.push_back(SurfacePoint::on_edge(EdgeId(e), t));
+  }
+  for (int f = 0; f < src.n_faces(); f += 2) {
+    pts.push_back(SurfacePoint::in_face(FaceId(f), {0.2, 0.3, 0.5}));
+    pts.push_back(SurfacePoint::in_face(FaceId(f), {0.5, 0.5 - 1e-15, 1e-15}));
+    pts.push_back(SurfacePoint::in_face(FaceId(f), {0.25, 0.75, 0.0}));
+  }
+  return pts;
+}
+
+// The batch evaluation shares one lift per edge among the points on it; each result must be the single point
+// evaluation's, to the last bit, in both directions (the overlay's agreement check relies on it).
+TEST(LiftMap, BatchEvaluationEqualsPointByPoint) {
+  const TriangleMesh man = testing::read_demo_mesh("man.off");
+  const TriangleMesh armadillo = testing::read_demo_mesh("armadillo.off");
+  FlatPair p = testing::tutte_pair_of_patches(man, armadillo, 3000);
+  testing::exp_warp(p, 3.4);  // overlapping sheets (as in the test below): the batch must find the right one too
+  const Meshes ms(p);
+  const LiftedBijection lift(ms.m, p.m.X, ms.n, p.n.X, p.nu);
+  const std::vector<SurfacePoint> on_m = mixed_points(ms.m);
+  const std::vector<SurfacePoint> on_n = mixed_points(ms.n);
+  const std::vector<SurfacePoint> f = lift.evaluate_f(on_m);
+  const std::vector<SurfacePoint> g = lift.evaluate_g(on_n);
+  ASSERT_EQ(f.size(), on_m.size());
+  ASSERT_EQ(g.size(), on_n.size());
+  for (size_t i = 0; i < on_m.size(); ++i) ASSERT_TRUE(identical(f[i], lift.evaluate_f(on_m[i]))) << "point " << i;
+  for (size_t i = 0; i < on_n.size(); ++i) ASSERT_TRUE(identical(g[i], lift.evaluate_g(on_n[i]))) << "point " << i;
+  EXPECT_TRUE(lift.evaluate_f(std::vector<SurfacePoint>{}).empty());
+}
+
 // Real pair that overlaps itself: the Tutte pair of a man and an armadillo patch warped by z -> exp(3.4 z), which
 // winds the disk 1.08 times around the origin (locally injective here, common boundary, liftable through the
 // homotopy exp(t z)). The warped lift must stay near the unwarped one (a wrong sheet would be far away).
