@@ -402,16 +402,18 @@ MapVerification verify_map(const MapResult& r, const std::vector<SurfacePoint>& 
     ver.lifting_residual = std::max(ver.lifting_residual, (z - Psi.row(c)).norm() / diameter);
   }
   const double sqrt_area_a = std::sqrt(total_area(VA, FA)), sqrt_area_b = std::sqrt(total_area(VB, FB));
+  double round_trip = 0;  // the largest of order-independent values: the same on any number of threads
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : round_trip)
   for (Eigen::Index v = 0; v < VA.rows(); ++v) {
     const SurfacePoint back = evaluate_map(r, Side::kB, r.a_to_b[static_cast<size_t>(v)]);
-    ver.round_trip_error =
-        std::max(ver.round_trip_error, (ta.position(back) - row3(VA, static_cast<int>(v))).norm() / sqrt_area_a);
+    round_trip = std::max(round_trip, (ta.position(back) - row3(VA, static_cast<int>(v))).norm() / sqrt_area_a);
   }
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : round_trip)
   for (Eigen::Index v = 0; v < VB.rows(); ++v) {
     const SurfacePoint back = evaluate_map(r, Side::kA, r.b_to_a[static_cast<size_t>(v)]);
-    ver.round_trip_error =
-        std::max(ver.round_trip_error, (tb.position(back) - row3(VB, static_cast<int>(v))).norm() / sqrt_area_b);
+    round_trip = std::max(round_trip, (tb.position(back) - row3(VB, static_cast<int>(v))).norm() / sqrt_area_b);
   }
+  ver.round_trip_error = round_trip;
   // A vertex landmark's image is the input map's; any other is evaluated (it is a refined vertex, so exactly).
   const auto image = [&](Side side, const SurfacePoint& x) {
     const std::vector<SurfacePoint>& input_map = side == Side::kA ? r.a_to_b : r.b_to_a;
