@@ -128,14 +128,20 @@ struct Side {
       const HalfedgeId h = Mesh::halfedge(EdgeId(e));
       edge_blocked[static_cast<size_t>(e)] = is_tree_edge(mesh.tail(h).idx, mesh.head(h).idx) ? 1 : 0;
     }
-    const auto position = [&](int id) -> Eigen::Vector3d {
-      if (id < nv) return refined.positions[static_cast<size_t>(id)];
-      const int e = (id - nv) / kSteiner;
-      const double t = ((id - nv) % kSteiner + 1.0) / (kSteiner + 1.0);
+    // Every node's position, computed once: the search reads each node's many times (once per face around it
+    // that a popped node shares, and again for its key).
+    std::vector<Eigen::Vector3d> node_position(n);
+    for (int v = 0; v < nv; ++v) node_position[static_cast<size_t>(v)] = refined.positions[static_cast<size_t>(v)];
+    for (int e = 0; e < ne; ++e) {
       const HalfedgeId h = Mesh::halfedge(EdgeId(e));
-      return (1.0 - t) * refined.positions[static_cast<size_t>(mesh.tail(h).idx)] +
-             t * refined.positions[static_cast<size_t>(mesh.head(h).idx)];
-    };
+      const Eigen::Vector3d& a = refined.positions[static_cast<size_t>(mesh.tail(h).idx)];
+      const Eigen::Vector3d& b = refined.positions[static_cast<size_t>(mesh.head(h).idx)];
+      for (int j = 0; j < kSteiner; ++j) {
+        const double t = (j + 1.0) / (kSteiner + 1.0);
+        node_position[static_cast<size_t>(nv + kSteiner * e + j)] = (1.0 - t) * a + t * b;
+      }
+    }
+    const auto position = [&](int id) -> const Eigen::Vector3d& { return node_position[static_cast<size_t>(id)]; };
     const auto allowed = [&](int id) {
       if (id >= nv) return edge_blocked[static_cast<size_t>((id - nv) / kSteiner)] == 0;
       return id == c || (!on_tree[static_cast<size_t>(id)] && landmark_of[static_cast<size_t>(id)] < 0);
@@ -177,7 +183,7 @@ struct Side {
       // All sectors reached, or far beyond the best arrival (other sectors are then not competitive; if the two
       // meshes share no reached sector, the caller falls back to the exhaustive edge-path search).
       if (static_cast<int>(best.size()) == n_sectors || k_u > 1.5 * best_any) break;
-      const Eigen::Vector3d pu = position(u);
+      const Eigen::Vector3d& pu = position(u);
       faces_of(u);
       for (const FaceId f : faces) {
         const auto fh = mesh.face_halfedges(f);
