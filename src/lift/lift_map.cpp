@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <deque>
-#include <exception>
+#include <numeric>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include "core/errors.h"
+#include "core/parallel_for_each.h"
 #include "lift/exact_predicates.h"
 #include "lift/format_point.h"
 #include "lift/lift_path.h"
@@ -89,51 +90,34 @@ class LiftedBijection::OneWay {
     return {};
   }
 
-  /// evaluate() at every point; the interior points of one edge share the lift of that edge (lift_edge).
+  /// evaluate() at every point; the interior points of one edge share the lift of that edge (lift_edge). The work
+  /// runs as parallel_for_each's items: one per edge holding interior points, one per other point.
   [[nodiscard]] std::vector<SurfacePoint> evaluate_all(const std::vector<SurfacePoint>& points) const {
-    std::vector<SurfacePoint> out(points.size());
-    // The interior edge points, grouped by edge (in input order within an edge), and every other point alone.
-    std::vector<size_t> order;
-    std::vector<size_t> singles;
-    for (size_t i = 0; i < points.size(); ++i) {
-      const SurfacePoint& p = points[i];
-      (p.kind == SurfacePoint::Kind::kEdge && p.t > 0.0 && p.t < 1.0 ? order : singles).push_back(i);
-    }
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return points[a].edge.idx < points[b].edge.idx; });
-    std::vector<size_t> group_start;  // groups of `order` with one edge: [group_start[g], group_start[g + 1])
+    const auto inside_edge = [&](size_t i) {
+      return points[i].kind == SurfacePoint::Kind::kEdge && points[i].t > 0.0 && points[i].t < 1.0;
+    };
+    // Every point's index: the others first, then the interior edge points by edge (in input order within an edge).
+    std::vector<size_t> order(points.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    const auto edge_key = [&](size_t i) { return inside_edge(i) ? points[i].edge.idx : -1; };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return edge_key(a) < edge_key(b); });
+    std::vector<size_t> item_start;  // item j evaluates order[item_start[j]] .. order[item_start[j + 1] - 1]
     for (size_t k = 0; k < order.size(); ++k) {
-      if (k == 0 || points[order[k]].edge != points[order[k - 1]].edge) group_start.push_back(k);
+      if (k == 0 || edge_key(order[k]) < 0 || edge_key(order[k]) != edge_key(order[k - 1])) item_start.push_back(k);
     }
-    group_start.push_back(order.size());
-    const auto n_groups = static_cast<std::ptrdiff_t>(group_start.size()) - 1;
-    const auto n_singles = static_cast<std::ptrdiff_t>(singles.size());
-    std::exception_ptr failed;
-#pragma omp parallel
-    {
-#pragma omp for schedule(dynamic, 64) nowait
-      for (std::ptrdiff_t g = 0; g < n_groups; ++g) {
-        try {
-          const size_t first = group_start[static_cast<size_t>(g)], last = group_start[static_cast<size_t>(g) + 1];
-          const EdgeId e = points[order[first]].edge;
-          const LiftTrace trace = lift_edge(e);
-          for (size_t k = first; k < last; ++k) out[order[k]] = point_on_edge_lift(e, trace, points[order[k]].t);
-        } catch (...) {
-#pragma omp critical(liftmap_evaluate_all)
-          failed = std::current_exception();
-        }
+    item_start.push_back(order.size());
+    std::vector<SurfacePoint> out(points.size());
+    const int n_items = static_cast<int>(item_start.size()) - 1;
+    parallel_for_each(n_items, n_items, [&](int j) {
+      const size_t first = item_start[static_cast<size_t>(j)], last = item_start[static_cast<size_t>(j) + 1];
+      if (!inside_edge(order[first])) {
+        out[order[first]] = evaluate(points[order[first]]);
+        return;
       }
-#pragma omp for schedule(dynamic, 256)
-      for (std::ptrdiff_t k = 0; k < n_singles; ++k) {
-        try {
-          out[singles[static_cast<size_t>(k)]] = evaluate(points[singles[static_cast<size_t>(k)]]);
-        } catch (...) {
-#pragma omp critical(liftmap_evaluate_all)
-          failed = std::current_exception();
-        }
-      }
-    }
-    if (failed) std::rethrow_exception(failed);
+      const EdgeId e = points[order[first]].edge;
+      const LiftTrace trace = lift_edge(e);
+      for (size_t k = first; k < last; ++k) out[order[k]] = point_on_edge_lift(e, trace, points[order[k]].t);
+    });
     return out;
   }
 
