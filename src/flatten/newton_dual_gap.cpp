@@ -1,6 +1,7 @@
 #include "flatten/newton_dual_gap.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -13,6 +14,9 @@ namespace liftmap::subproblem {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Rounds of objective_cone_shares' scaling at most (two suffice without raised faces, a few more with them).
+constexpr int kObjectiveConeRounds = 16;
 
 /// Local variables (alpha, beta, gamma, delta, c, e) of a face.
 using Vec6L = Eigen::Matrix<double, 6, 1>;
@@ -103,11 +107,11 @@ FaceShares energy_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, dou
   return out;
 }
 
-/// The epigraph's gap for its share v = (v_alpha, v_beta, v_c, v_e) (v_e already scaled) at the values `at` of
-/// (alpha, beta, c, e), +infinity if no multipliers of its three cones reproduce v.
-double epigraph_gap(const Eigen::Vector4d& v, const Eigen::Vector4d& at, const FaceSetup& fs) {
-  const double ve = v(3), vc = v(2);
-  if (!(ve > 0)) return kInf;
+/// The least a of the epigraph's cone r - c >= |(alpha, beta)| for the share v = (v_alpha, v_beta, v_c, v_e): the a
+/// that keeps a (1, w / a) in that cone, w = (v_alpha, v_beta) + v_c (cos, sin); +infinity if there is none or it
+/// exceeds -v_c (the rotated cone's b = -v_c - a would be negative). It does not depend on v_e.
+double epigraph_least_a(const Eigen::Vector4d& v, const FaceSetup& fs) {
+  const double vc = v(2);
   const Eigen::Vector2d d(fs.cs, fs.sn);
   const Eigen::Vector2d w = v.head<2>() + vc * d;
   const double wd = w.dot(d), ww = w.squaredNorm();
@@ -116,7 +120,16 @@ double epigraph_gap(const Eigen::Vector4d& v, const Eigen::Vector4d& at, const F
     if (!(wd < 0)) return kInf;
     a = ww / (-2 * wd);
   }
-  if (!(a <= ve && a <= -vc)) return kInf;
+  return a <= -vc ? a : kInf;
+}
+
+/// The epigraph's gap for its share v = (v_alpha, v_beta, v_c, v_e) (v_e already scaled) at the values `at` of
+/// (alpha, beta, c, e), +infinity if no multipliers of its three cones reproduce v.
+double epigraph_gap(const Eigen::Vector4d& v, const Eigen::Vector4d& at, const FaceSetup& fs) {
+  const double ve = v(3), vc = v(2);
+  if (!(ve > 0)) return kInf;
+  const double a = epigraph_least_a(v, fs);
+  if (!(a <= ve)) return kInf;
   const double p = std::sqrt(ve * ve - a * a), b = -vc - a;
   return v.dot(at) - 2 * std::sqrt(p * b);
 }
@@ -158,6 +171,56 @@ FaceShares ghost_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, doub
   return out;
 }
 
+/// Each energy face's v_e, the multiplier of e_j in the epigraph's cone e >= |(r, s)| and (times -1 / sqrt(w_j)) in
+/// its mesh's objective cone T_m >= |(sqrt(w_j) e_j)|. Stationarity in e_j holds for any v_e, so v_e is free but for
+/// two cones: each objective cone's multiplier (1, -v_e / sqrt(w)) must lie in it, sum_j v_e^2 / w_j <= 1 over the
+/// mesh, and each epigraph's needs v_e >= a_j (epigraph_least_a). The Newton direction's v_e are scaled down by one
+/// factor per mesh, s v_e, and those below their a_j raised to it: v_e' = max(s v_e, a_j), s the largest found (a few
+/// rounds: each round's sum is s^2 times the free faces' plus the raised faces' fixed a_j^2 / w_j) with the sum at
+/// most 1. Far from the central path a few faces whose Newton step leaves their cones (v_e < a_j) would otherwise
+/// leave the whole point without a gap.
+struct ObjectiveConeShares {
+  std::vector<double> v_e;  ///< per face (0 for ghost faces)
+  bool feasible = false;    ///< false: some a_j is infinite, or no factor keeps the sum at most 1
+};
+
+ObjectiveConeShares objective_cone_shares(const Setup& s, const std::vector<FaceShares>& shares) {
+  const int nf = s.n_faces;
+  ObjectiveConeShares out;
+  out.v_e.assign(static_cast<size_t>(nf), 0.0);
+  std::vector<double> a(static_cast<size_t>(nf), 0.0);
+  for (int j = 0; j < nf; ++j) {
+    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+    if (fs.ghost()) continue;
+    a[static_cast<size_t>(j)] = epigraph_least_a(shares[static_cast<size_t>(j)].epigraph, fs);
+    if (!std::isfinite(a[static_cast<size_t>(j)])) return out;
+  }
+  auto mesh_sums = [&](const std::array<double, 2>& scale) {
+    std::array<double, 2> norm2{0, 0};
+    for (int j = 0; j < nf; ++j) {
+      const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
+      if (fs.ghost()) continue;
+      const size_t m = static_cast<size_t>(fs.mesh);
+      const double ve = std::max(scale[m] * shares[static_cast<size_t>(j)].epigraph(3), a[static_cast<size_t>(j)]);
+      out.v_e[static_cast<size_t>(j)] = ve;
+      norm2[m] += ve * ve / fs.w;
+    }
+    return norm2;
+  };
+  std::array<double, 2> scale{1, 1};
+  for (int round = 0; round < kObjectiveConeRounds; ++round) {
+    const std::array<double, 2> norm2 = mesh_sums(scale);
+    if (norm2[0] <= 1 && norm2[1] <= 1) {
+      out.feasible = true;
+      return out;
+    }
+    for (size_t m = 0; m < 2; ++m) {
+      if (norm2[m] > 1) scale[m] *= (1 - 1e-15) / std::sqrt(norm2[m]);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 double newton_dual_gap(const Setup& s, const NewtonPoint& p) {
@@ -174,23 +237,14 @@ double newton_dual_gap(const Setup& s, const NewtonPoint& p) {
     if (!f.ok) ok = 0;
   }
   if (ok == 0) return kInf;
-  // The objective cones' multipliers (1, -v_e / sqrt(w)) must lie in their cones: scale each mesh's v_e together.
-  std::array<double, 2> norm2{0, 0};
-  for (int j = 0; j < nf; ++j) {
-    const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
-    const double ve = shares[static_cast<size_t>(j)].epigraph(3);
-    if (!fs.ghost()) norm2[static_cast<size_t>(fs.mesh)] += ve * ve / fs.w;
-  }
-  std::array<double, 2> scale{1, 1};
-  for (size_t m = 0; m < 2; ++m) {
-    if (norm2[m] > 1) scale[m] = (1 - 1e-15) / std::sqrt(norm2[m]);
-  }
+  const ObjectiveConeShares e_shares = objective_cone_shares(s, shares);
+  if (!e_shares.feasible) return kInf;
   const double face_gaps = sum_over_faces<double>(nf, [&](int j) {
     const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
     const FaceShares& f = shares[static_cast<size_t>(j)];
     if (fs.ghost()) return f.gap;
     Eigen::Vector4d v = f.epigraph;
-    v(3) *= scale[static_cast<size_t>(fs.mesh)];
+    v(3) = e_shares.v_e[static_cast<size_t>(j)];
     // The objective cone's part of s^T z, -e_j v_e, cancels the epigraph's v_e e_j.
     return f.gap + epigraph_gap(v, f.at, fs) - f.at(3) * v(3);
   });

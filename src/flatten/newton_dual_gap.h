@@ -44,8 +44,10 @@ struct NewtonPoint {
 ///   v . q - 2 sqrt(p b);
 /// - ghost faces: the three terms' summed share, split between the cones with the least gap (a convex problem in one
 ///   variable, solved in closed form);
-/// - the objective cones: z = (1, -v_e / sqrt(w)) (exact in T_m and e_j by construction), with every face's v_e scaled
-///   down together if |(v_e / sqrt(w))| exceeds 1.
+/// - the objective cones: z = (1, -v_e / sqrt(w)) (exact in T_m and e_j by construction for any v_e), with every
+///   face's v_e of a mesh scaled down together if |(v_e / sqrt(w))| exceeds 1, and a face's v_e below its epigraph's
+///   least a raised to it (v_e' = max(s v_e, a), s the largest factor that keeps the norm at most 1): far from the
+///   central path a few faces' Newton steps leave their epigraph cones, which would otherwise void the whole point.
 /// Stationarity in c, e and T holds by construction; in the positions it holds up to the Newton system's residual
 /// r = sum_j S_j^T v_j, which is checked: the gap is returned with |r|_1 * 2 position_extent added (the dual
 /// objective's change for an optimum within twice the iterate's extent), +infinity if that exceeds 1e-3 of the gap.
