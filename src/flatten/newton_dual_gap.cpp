@@ -15,8 +15,17 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Rounds of objective_cone_shares' scaling at most (two suffice without raised faces, a few more with them).
-constexpr int kObjectiveConeRounds = 16;
+/// An energy face's c-cone multiplier z1(0) is at least this times |(v_alpha, v_beta)|, its epigraph share's: the least
+/// -v_c = z1(0) for which the epigraph's cones can hold the share is exactly |(v_alpha, v_beta)| (epigraph_least_a),
+/// and the margin keeps the rounding of a from exceeding it.
+constexpr double kLeastCMargin = 1 + 1e-12;
+
+/// Rounds of objective_cone_shares' scaling at most: two without raised faces, one more for each time a lower scale
+/// raises more of them (three to four on the punctured hand with up to 48 faces raised).
+constexpr int kObjectiveConeRounds = 8;
+
+/// The objective cones' multipliers are kept inside by this much relative (objective_cone_shares).
+constexpr double kConeMargin = 1e-13;
 
 /// Local variables (alpha, beta, gamma, delta, c, e) of a face.
 using Vec6L = Eigen::Matrix<double, 6, 1>;
@@ -87,20 +96,21 @@ struct FaceShares {
   bool ok = true;
 };
 
-/// An energy face (h of eq. 3): the cone of c, whose first entry is raised to the norm of the others if needed, and
-/// the epigraph's share, whose gap needs the scaling. The epigraph's share of c is minus the cone's, so that the
-/// face is stationary in c exactly (the Newton equation's row of c holds only up to rounding).
+/// An energy face (h of eq. 3): the cone of c, whose first entry is raised to the norm of the others if needed (and
+/// to |(v_alpha, v_beta)|, kLeastCMargin), and the epigraph's share, whose gap needs the scaling. The epigraph's share
+/// of c is minus the cone's, so that the face is stationary in c exactly (the Newton equation's row of c holds only
+/// up to rounding) whatever the first entry is.
 FaceShares energy_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, double t) {
   FaceShares out;
-  Eigen::Vector3d z1 = cone_share(q, dq, t);
-  const double rho = std::hypot(z1(1), z1(2));
-  z1(0) = std::max(z1(0), rho);
-  out.gap = z1.dot(Eigen::Vector3d(q(kC), q(2), q(3)));
   // The epigraph term -log(e - R) on (alpha, beta, c, e).
   const EpigraphNorm en = epigraph_norm(q(0), q(1), q(kC), fs.cs, fs.sn);
   const Eigen::Vector4d dq4(dq(0), dq(1), dq(kC), dq(kE));
   const Eigen::Vector4d v =
       log_barrier_share<4>(q(kE) - en.R, Eigen::Vector4d::Unit(3) - en.d, Eigen::Matrix4d(-en.d2), dq4, t);
+  Eigen::Vector3d z1 = cone_share(q, dq, t);
+  const double rho = std::hypot(z1(1), z1(2));
+  z1(0) = std::max({z1(0), rho, kLeastCMargin * std::hypot(v(0), v(1))});
+  out.gap = z1.dot(Eigen::Vector3d(q(kC), q(2), q(3)));
   out.epigraph << v(0), v(1), -z1(0), v(3);
   out.at << q(0), q(1), q(kC), q(kE);
   out.jacobian << v(0), v(1), z1(1), z1(2);
@@ -175,13 +185,13 @@ FaceShares ghost_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, doub
 /// its mesh's objective cone T_m >= |(sqrt(w_j) e_j)|. Stationarity in e_j holds for any v_e, so v_e is free but for
 /// two cones: each objective cone's multiplier (1, -v_e / sqrt(w)) must lie in it, sum_j v_e^2 / w_j <= 1 over the
 /// mesh, and each epigraph's needs v_e >= a_j (epigraph_least_a). The Newton direction's v_e are scaled down by one
-/// factor per mesh, s v_e, and those below their a_j raised to it: v_e' = max(s v_e, a_j), s the largest found (a few
-/// rounds: each round's sum is s^2 times the free faces' plus the raised faces' fixed a_j^2 / w_j) with the sum at
-/// most 1. Far from the central path a few faces whose Newton step leaves their cones (v_e < a_j) would otherwise
-/// leave the whole point without a gap.
+/// factor per mesh, and those below their a_j raised to it: v_e' = max(s v_e, a_j), with s the largest that keeps the
+/// sum at most 1 (s^2 times the free faces' sum plus the raised faces' a_j^2 / w_j; a lower s may raise more faces,
+/// hence a few rounds). Far from the central path a few faces whose Newton step leaves their cones (v_e < a_j) would
+/// otherwise leave the whole point without a gap.
 struct ObjectiveConeShares {
   std::vector<double> v_e;  ///< per face (0 for ghost faces)
-  bool feasible = false;    ///< false: some a_j is infinite, or no factor keeps the sum at most 1
+  bool feasible = false;    ///< false: some a_j is infinite, or the raised faces alone fill a cone
 };
 
 ObjectiveConeShares objective_cone_shares(const Setup& s, const std::vector<FaceShares>& shares) {
@@ -195,27 +205,34 @@ ObjectiveConeShares objective_cone_shares(const Setup& s, const std::vector<Face
     a[static_cast<size_t>(j)] = epigraph_least_a(shares[static_cast<size_t>(j)].epigraph, fs);
     if (!std::isfinite(a[static_cast<size_t>(j)])) return out;
   }
-  auto mesh_sums = [&](const std::array<double, 2>& scale) {
-    std::array<double, 2> norm2{0, 0};
+  std::array<double, 2> scale{1, 1};
+  for (int round = 0; round < kObjectiveConeRounds; ++round) {
+    std::array<double, 2> norm2{0, 0}, free2{0, 0}, raised2{0, 0};  // the sum; the free faces' unscaled; the raised
     for (int j = 0; j < nf; ++j) {
       const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
       if (fs.ghost()) continue;
       const size_t m = static_cast<size_t>(fs.mesh);
-      const double ve = std::max(scale[m] * shares[static_cast<size_t>(j)].epigraph(3), a[static_cast<size_t>(j)]);
-      out.v_e[static_cast<size_t>(j)] = ve;
-      norm2[m] += ve * ve / fs.w;
+      const double ve = shares[static_cast<size_t>(j)].epigraph(3), aj = a[static_cast<size_t>(j)];
+      const double ve_out = std::max(scale[m] * ve, aj);
+      out.v_e[static_cast<size_t>(j)] = ve_out;
+      norm2[m] += ve_out * ve_out / fs.w;
+      if (scale[m] * ve >= aj) {
+        free2[m] += ve * ve / fs.w;
+      } else {
+        raised2[m] += aj * aj / fs.w;
+      }
     }
-    return norm2;
-  };
-  std::array<double, 2> scale{1, 1};
-  for (int round = 0; round < kObjectiveConeRounds; ++round) {
-    const std::array<double, 2> norm2 = mesh_sums(scale);
     if (norm2[0] <= 1 && norm2[1] <= 1) {
       out.feasible = true;
       return out;
     }
     for (size_t m = 0; m < 2; ++m) {
-      if (norm2[m] > 1) scale[m] *= (1 - 1e-15) / std::sqrt(norm2[m]);
+      if (norm2[m] <= 1) continue;
+      if (!(raised2[m] < 1)) return out;
+      // Below the least factor for this round's faces, and below the last factor in any case: the sum's rounding
+      // (some 1e-15 relative over 50k faces) must not leave it a hair above 1 round after round.
+      scale[m] = std::min((1 - kConeMargin) * std::sqrt(1 - raised2[m]) / std::sqrt(free2[m]),
+                          (1 - kConeMargin) * scale[m]);
     }
   }
   return out;

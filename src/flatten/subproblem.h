@@ -102,8 +102,9 @@ struct PrimalDualSettings {
 
 /// Settings of a subproblem solve: the common part, then each method's own.
 struct SubproblemSettings {
-  /// Stop when the certified gap is below this times the objective. 1e-8 is reached reliably on a few thousand
-  /// faces; beyond, the Newton systems approach double-precision limits.
+  /// Stop when the certified gap is below this times the objective (the barrier method: times T_0 + T_1 at the
+  /// point, which exceeds the objective by at most the gap). 1e-8 is reached reliably on a few thousand faces;
+  /// beyond, the Newton systems approach double-precision limits.
   double relative_gap = 1e-8;
   int max_iterations = 400;  ///< Newton steps (barrier, over all centrings) or iterations (primal-dual)
   std::function<void(const SubproblemStep&)> on_step = nullptr;  ///< called after every iteration if set
