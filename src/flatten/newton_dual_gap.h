@@ -37,7 +37,9 @@ struct NewtonPoint {
 /// each barrier term F_i contributes the share v_i = -(grad F_i + hess F_i dx) / t of the objective's gradient
 /// (sum_i v_i = grad f0 is the Newton equation), and each share is written as cone multipliers in closed form:
 /// - c >= |(gamma, delta)|: z = -(grad F + hess F ds) / t, F = -log(s^T J s), its first entry raised to the norm of the
-///   others if it falls short; the epigraph's share of c is minus that entry (the face stationary in c exactly);
+///   others if it falls short, and to |(v_alpha, v_beta)| of the epigraph's share (below that, no multipliers of the
+///   epigraph's cones reproduce the share); the epigraph's share of c is minus that entry (the face stationary in c
+///   exactly, whatever the entry);
 /// - the epigraph, share v on (alpha, beta, c, e): z = (v_e, -a, -p) on e >= |(r, s)|, a (1, w / a) on
 ///   r - c >= |(alpha, beta)| and the rotated cone's (p, b) with b = -v_c - a, w = (v_alpha, v_beta) + v_c (cos, sin),
 ///   a = |w|^2 / (-2 w . (cos, sin)) the least that keeps the second in its cone, p = sqrt(v_e^2 - a^2); its gap is
