@@ -291,76 +291,71 @@ TEST(flatten_barrier, WholeMeshSubproblemCertificateHolds) {
   EXPECT_GE(again.objective, r.objective - r.gap_bound - 1e-12 * r.objective);
 }
 
-// The dual point of a Newton direction (newton_dual_gap.h) certifies a gap before the Newton decrement falls below 1.
-// At each relative gap: its bound must hold (the objective no further above a much finer solve's than the bound),
-// be of the size of the barrier method's own bound at the same barrier parameter (both about nu / t; a dual point
-// built wrongly gives a bound that is either never met or far too small), and never cost Newton steps; over all
-// gaps it must save some.
+// The subproblem solved to relative_gap by the barrier method's own gap bound alone (no dual point of the Newton
+// direction).
+SubproblemResult solve_by_own_bound(const JointFlattenProblem& jp, double relative_gap, SparseCholesky& chol) {
+  SubproblemSettings settings;
+  settings.relative_gap = relative_gap;
+  settings.barrier.dual_gap_decrement = 0;
+  return solve_convex_subproblem(jp.subproblem, jp.X0, settings, chol);
+}
+
+// Solves jp to relative_gap with the dual point tried from lambda^2 / 2 <= decrement and without it, and checks the
+// point's gap: met (relative to T_0 + T_1 at the point, at most the objective plus the gap;
+// SubproblemSettings::relative_gap), holding against `best`, a much finer solve (the result no further above its
+// optimum than the bound), of the size of the method's own bound at the same barrier parameter (both about nu / t; a
+// point built wrongly gives one either never met or far too small), and costing no Newton steps. Returns the steps
+// it saved.
+int check_dual_point(const JointFlattenProblem& jp, const SubproblemResult& best, double relative_gap, double decrement,
+                     SparseCholesky& chol) {
+  SubproblemSettings with;
+  with.relative_gap = relative_gap;
+  with.barrier.dual_gap_decrement = decrement;
+  const SubproblemResult r = solve_convex_subproblem(jp.subproblem, jp.X0, with, chol);
+  const SubproblemResult r0 = solve_by_own_bound(jp, relative_gap, chol);
+  std::printf(
+      "point tried from lambda^2 / 2 <= %g, relative gap %g: %d Newton steps, bound %.3g (without: %d, %.3g); "
+      "above the optimum by %.3g\n",
+      decrement, relative_gap, r.iterations, r.gap_bound, r0.iterations, r0.gap_bound, r.objective - best.objective);
+  EXPECT_TRUE(r.converged());
+  EXPECT_TRUE(r0.converged());
+  EXPECT_LE(r.gap_bound, relative_gap * (r.objective + r.gap_bound));
+  EXPECT_GE(r.gap_bound, r.objective - best.objective);
+  EXPECT_GT(r.gap_bound, 0.3 * r0.gap_bound);
+  EXPECT_LE(r.iterations, r0.iterations);
+  return r0.iterations - r.iterations;
+}
+
+// The dual point of a Newton direction (newton_dual_gap.h) certifies a gap before the Newton decrement falls below 1:
+// at each relative gap it passes check_dual_point, and over all gaps it saves Newton steps.
 TEST(flatten_barrier, NewtonDualGapHoldsAndSavesSteps) {
   const JointFlattenProblem jp = testing::camel_cow_patch_problem(testing::kAllCombos[0]);  // p = 2, eq. 3
   SparseCholesky chol;
-  SubproblemSettings fine;
-  fine.relative_gap = 1e-10;
-  fine.barrier.dual_gap_decrement = 0;
-  const SubproblemResult best = solve_convex_subproblem(jp.subproblem, jp.X0, fine, chol);
+  const SubproblemResult best = solve_by_own_bound(jp, 1e-10, chol);
   ASSERT_TRUE(best.converged());
   int saved = 0;
   for (const double relative_gap : {1e-2, 1e-3, 1e-4, 1e-6}) {
-    SubproblemSettings with, without;
-    with.relative_gap = without.relative_gap = relative_gap;
-    without.barrier.dual_gap_decrement = 0;
-    const SubproblemResult r = solve_convex_subproblem(jp.subproblem, jp.X0, with, chol);
-    const SubproblemResult r0 = solve_convex_subproblem(jp.subproblem, jp.X0, without, chol);
-    std::printf("relative gap %g: %d Newton steps, bound %.3g (without: %d, %.3g); above the optimum by %.3g\n",
-                relative_gap, r.iterations, r.gap_bound, r0.iterations, r0.gap_bound, r.objective - best.objective);
-    ASSERT_TRUE(r.converged());
-    ASSERT_TRUE(r0.converged());
-    EXPECT_LE(r.gap_bound, relative_gap * r.objective);
-    EXPECT_GE(r.gap_bound, r.objective - best.objective);
-    EXPECT_LE(r.iterations, r0.iterations);
-    EXPECT_GT(r.gap_bound, 0.3 * r0.gap_bound);
-    saved += r0.iterations - r.iterations;
+    saved += check_dual_point(jp, best, relative_gap, SubproblemSettings().barrier.dual_gap_decrement, chol);
   }
   EXPECT_GT(saved, 0);
 }
 
 // A whole mesh whose start squeezes faces (the punctured hand and a deformed copy, p = 2): far from the central path
 // a few faces' Newton shares leave their epigraph's cones, and the dual point raises their c-cone multiplier or their
-// v_e (newton_dual_gap.h) instead of giving up: tried at lambda^2 / 2 <= 1e4 (the default) and gap 3e-3, one point
-// with 3 faces' v_e raised ends the centring at 10 Newton steps instead of 12; tried at every step, gap 3e-2, one with
-// a face's c-cone multiplier raised ends it at step 4. The gap such a point certifies must still hold (no result above
-// a much finer solve's optimum by more than its bound), be of the size of the barrier method's own bound (about
-// nu / t at the same barrier parameter: a point built wrongly gives one far too small), and cost no Newton steps.
+// v_e (newton_dual_gap.h) instead of giving up. Tried from lambda^2 / 2 <= 1e4 (the default): at the gap 3e-2 a
+// point with 5 faces' v_e and one face's c-cone entry raised ends the centring at step 4 instead of 8, at 3e-3 one
+// with 3 v_e raised at step 10 instead of 12; tried at every step, more points have faces raised. Each must pass
+// check_dual_point.
 TEST(flatten_barrier_whole, NewtonDualGapHoldsOnASqueezedWholeMesh) {
   const auto [a, b] = testing::punctured_pair("hand.off", "hand.off", 12);
   const JointFlattenProblem jp =
       make_joint_flatten_problem(a.flattening_disk(), testing::deformed_copy(b).flattening_disk(), {});
   SparseCholesky chol;
-  SubproblemSettings fine;
-  fine.relative_gap = 1e-6;
-  fine.barrier.dual_gap_decrement = 0;
-  const SubproblemResult best = solve_convex_subproblem(jp.subproblem, jp.X0, fine, chol);
+  const SubproblemResult best = solve_by_own_bound(jp, 1e-6, chol);
   ASSERT_TRUE(best.converged());
   for (const double decrement : {SubproblemSettings().barrier.dual_gap_decrement, 1e12}) {
     for (const double relative_gap : {3e-2, 1e-2, 3e-3, 1e-3}) {
-      SubproblemSettings with, without;
-      with.relative_gap = without.relative_gap = relative_gap;
-      with.barrier.dual_gap_decrement = decrement;
-      without.barrier.dual_gap_decrement = 0;
-      const SubproblemResult r = solve_convex_subproblem(jp.subproblem, jp.X0, with, chol);
-      const SubproblemResult r0 = solve_convex_subproblem(jp.subproblem, jp.X0, without, chol);
-      std::printf(
-          "point tried from lambda^2 / 2 <= %g, relative gap %g: %d Newton steps, bound %.3g (without: %d, "
-          "%.3g); above the optimum by %.3g\n",
-          decrement, relative_gap, r.iterations, r.gap_bound, r0.iterations, r0.gap_bound,
-          r.objective - best.objective);
-      ASSERT_TRUE(r.converged());
-      ASSERT_TRUE(r0.converged());
-      // Relative to T_0 + T_1 at the point, at most the objective plus the gap (SubproblemSettings::relative_gap).
-      EXPECT_LE(r.gap_bound, relative_gap * (r.objective + r.gap_bound));
-      EXPECT_GE(r.gap_bound, r.objective - best.objective);
-      EXPECT_GT(r.gap_bound, 0.3 * r0.gap_bound);
-      EXPECT_LE(r.iterations, r0.iterations);
+      check_dual_point(jp, best, relative_gap, decrement, chol);
     }
   }
 }
