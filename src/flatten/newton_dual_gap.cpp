@@ -21,7 +21,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kLeastCMargin = 1 + 1e-12;
 
 /// Rounds of objective_cone_shares' scaling at most: two without raised faces, one more for each time a lower scale
-/// raises more of them (three to four on the punctured hand with up to 48 faces raised).
+/// raises more of them (at most four seen, on the punctured hand with up to 89 faces raised).
 constexpr int kObjectiveConeRounds = 8;
 
 /// The objective cones' multipliers are kept inside by this much relative (objective_cone_shares).
@@ -231,8 +231,8 @@ ObjectiveConeShares objective_cone_shares(const Setup& s, const std::vector<Face
       if (!(raised2[m] < 1)) return out;
       // Below the least factor for this round's faces, and below the last factor in any case: the sum's rounding
       // (some 1e-15 relative over 50k faces) must not leave it a hair above 1 round after round.
-      scale[m] = std::min((1 - kConeMargin) * std::sqrt(1 - raised2[m]) / std::sqrt(free2[m]),
-                          (1 - kConeMargin) * scale[m]);
+      scale[m] =
+          std::min((1 - kConeMargin) * std::sqrt(1 - raised2[m]) / std::sqrt(free2[m]), (1 - kConeMargin) * scale[m]);
     }
   }
   return out;
