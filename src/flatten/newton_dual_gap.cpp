@@ -134,12 +134,10 @@ double epigraph_least_a(const Eigen::Vector4d& v, const FaceSetup& fs) {
 }
 
 /// The epigraph's gap for its share v = (v_alpha, v_beta, v_c, v_e) (v_e already scaled) at the values `at` of
-/// (alpha, beta, c, e), +infinity if no multipliers of its three cones reproduce v.
-double epigraph_gap(const Eigen::Vector4d& v, const Eigen::Vector4d& at, const FaceSetup& fs) {
+/// (alpha, beta, c, e), given its epigraph_least_a; +infinity if no multipliers of its three cones reproduce v.
+double epigraph_gap(const Eigen::Vector4d& v, double a, const Eigen::Vector4d& at) {
   const double ve = v(3), vc = v(2);
-  if (!(ve > 0)) return kInf;
-  const double a = epigraph_least_a(v, fs);
-  if (!(a <= ve)) return kInf;
+  if (!(ve > 0) || !(a <= ve)) return kInf;
   const double p = std::sqrt(ve * ve - a * a), b = -vc - a;
   return v.dot(at) - 2 * std::sqrt(p * b);
 }
@@ -191,6 +189,7 @@ FaceShares ghost_face(const Vec6L& q, const Vec6L& dq, const FaceSetup& fs, doub
 /// otherwise leave the whole point without a gap.
 struct ObjectiveConeShares {
   std::vector<double> v_e;  ///< per face (0 for ghost faces)
+  std::vector<double> a;    ///< per face, epigraph_least_a (0 for ghost faces)
   bool feasible = false;    ///< false: some a_j is infinite, or the raised faces alone fill a cone
 };
 
@@ -198,7 +197,8 @@ ObjectiveConeShares objective_cone_shares(const Setup& s, const std::vector<Face
   const int nf = s.n_faces;
   ObjectiveConeShares out;
   out.v_e.assign(static_cast<size_t>(nf), 0.0);
-  std::vector<double> a(static_cast<size_t>(nf), 0.0);
+  out.a.assign(static_cast<size_t>(nf), 0.0);
+  std::vector<double>& a = out.a;
   for (int j = 0; j < nf; ++j) {
     const FaceSetup& fs = s.faces[static_cast<size_t>(j)];
     if (fs.ghost()) continue;
@@ -263,7 +263,7 @@ double newton_dual_gap(const Setup& s, const NewtonPoint& p) {
     Eigen::Vector4d v = f.epigraph;
     v(3) = e_shares.v_e[static_cast<size_t>(j)];
     // The objective cone's part of s^T z, -e_j v_e, cancels the epigraph's v_e e_j.
-    return f.gap + epigraph_gap(v, f.at, fs) - f.at(3) * v(3);
+    return f.gap + epigraph_gap(v, e_shares.a[static_cast<size_t>(j)], f.at) - f.at(3) * v(3);
   });
   if (!std::isfinite(face_gaps)) return kInf;
   const double gap = face_gaps + p.T[0] + p.T[1];
