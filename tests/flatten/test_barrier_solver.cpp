@@ -300,14 +300,18 @@ SubproblemResult solve_by_own_bound(const JointFlattenProblem& jp, double relati
   return solve_convex_subproblem(jp.subproblem, jp.X0, settings, chol);
 }
 
+// A subproblem solved with the dual point (`with`) and by the method's own bound alone (`without`).
+struct DualPointRun {
+  SubproblemResult with, without;
+};
+
 // Solves jp to relative_gap with the dual point tried from lambda^2 / 2 <= decrement and without it, and checks the
 // point's gap: met (relative to T_0 + T_1 at the point, at most the objective plus the gap;
 // SubproblemSettings::relative_gap), holding against `best`, a much finer solve (the result no further above its
 // optimum than the bound), of the size of the method's own bound at the same barrier parameter (both about nu / t; a
-// point built wrongly gives one either never met or far too small), and costing no Newton steps. Returns the steps
-// it saved.
-int check_dual_point(const JointFlattenProblem& jp, const SubproblemResult& best, double relative_gap, double decrement,
-                     SparseCholesky& chol) {
+// point built wrongly gives one either never met or far too small), and costing no Newton steps.
+DualPointRun check_dual_point(const JointFlattenProblem& jp, const SubproblemResult& best, double relative_gap,
+                              double decrement, SparseCholesky& chol) {
   SubproblemSettings with;
   with.relative_gap = relative_gap;
   with.barrier.dual_gap_decrement = decrement;
@@ -323,11 +327,12 @@ int check_dual_point(const JointFlattenProblem& jp, const SubproblemResult& best
   EXPECT_GE(r.gap_bound, r.objective - best.objective);
   EXPECT_GT(r.gap_bound, 0.3 * r0.gap_bound);
   EXPECT_LE(r.iterations, r0.iterations);
-  return r0.iterations - r.iterations;
+  return {r, r0};
 }
 
 // The dual point of a Newton direction (newton_dual_gap.h) certifies a gap before the Newton decrement falls below 1:
-// at each relative gap it passes check_dual_point, and over all gaps it saves Newton steps.
+// at each relative gap it passes check_dual_point, here with the gap met relative to the objective itself, and over
+// all gaps it saves Newton steps.
 TEST(flatten_barrier, NewtonDualGapHoldsAndSavesSteps) {
   const JointFlattenProblem jp = testing::camel_cow_patch_problem(testing::kAllCombos[0]);  // p = 2, eq. 3
   SparseCholesky chol;
@@ -335,7 +340,10 @@ TEST(flatten_barrier, NewtonDualGapHoldsAndSavesSteps) {
   ASSERT_TRUE(best.converged());
   int saved = 0;
   for (const double relative_gap : {1e-2, 1e-3, 1e-4, 1e-6}) {
-    saved += check_dual_point(jp, best, relative_gap, SubproblemSettings().barrier.dual_gap_decrement, chol);
+    const DualPointRun run =
+        check_dual_point(jp, best, relative_gap, SubproblemSettings().barrier.dual_gap_decrement, chol);
+    EXPECT_LE(run.with.gap_bound, relative_gap * run.with.objective);
+    saved += run.without.iterations - run.with.iterations;
   }
   EXPECT_GT(saved, 0);
 }
