@@ -74,6 +74,9 @@ int main(int argc, char** argv) {
   if (const char* g = std::getenv("PROFILE_DUAL_GAP_DECREMENT")) {
     options.solver.barrier.dual_gap_decrement = std::atof(g);
   }
+  if (const char* g = std::getenv("PROFILE_PROXY_WHILE_DECREASE")) {
+    options.start_optimization.proxy_while_decrease = options.joint_start.newton.proxy_while_decrease = std::atof(g);
+  }
   if (const char* g = std::getenv("PROFILE_START_STEPS")) options.start_optimization.max_iterations = std::atoi(g);
   if (const char* g = std::getenv("PROFILE_ISOTROPIC"))
     options.solver.barrier.isotropic_anticonformal_curvature = std::atoi(g) != 0;

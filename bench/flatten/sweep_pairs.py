@@ -6,7 +6,7 @@
 Runs BUILD/bench/flatten/profile_flatten on the three example pairs with their landmarks and on eight pairs of the
 meshes from `make meshes` with 5 random vertex landmarks each (seeds 100-107, the same on every machine), one after
 the other, with this process's environment: set PROFILE_* variables (profile_flatten.cpp reads them) to compare a
-setting against the default. Prints per pair the start's joint relaxation steps, the outer iterations' Newton steps,
+setting against the default. Prints per pair the start's per-disk pre-optimisation and joint relaxation steps, the outer iterations' Newton steps,
 the final energy and the flattening's seconds, then the sums. One run each: the seconds are indicative only; judge
 speed side by side (docs/performance.md says how).
 """
@@ -48,13 +48,14 @@ def pairs(meshes, folder):
 
 
 def run(profile, a, b, landmarks):
-    """One profile_flatten run: (relaxation steps, outer Newton steps per iteration, energy, seconds, stop reason)."""
+    """One profile_flatten run: (per-disk steps, relaxation steps, outer Newton steps per iteration, energy, seconds, stop reason)."""
     text = subprocess.run([profile, a, b, landmarks], capture_output=True, text=True, check=True).stdout
     steps = [int(s) for i, s in re.findall(r"^iterate (\d+): .*Newton steps (\d+)", text, re.M) if int(i) > 0]
     energy = re.findall(r"^iterate \d+: energy (\S+)", text, re.M)[-1]
-    relaxation = int(re.search(r"joint relaxation (\d+) steps", text).group(1))
+    start = re.search(r"per-disk steps (\d+) \+ (\d+), joint relaxation (\d+) steps", text)
+    per_disk, relaxation = int(start.group(1)) + int(start.group(2)), int(start.group(3))
     total = re.search(r"^flatten total (\S+) s ?(.*)$", text, re.M)
-    return relaxation, steps, float(energy), float(total.group(1)), total.group(2).strip()
+    return per_disk, relaxation, steps, float(energy), float(total.group(1)), total.group(2).strip()
 
 
 def main():
@@ -68,19 +69,20 @@ def main():
         sys.exit(f"sweep_pairs: {profile} not found: build it (cmake --build {args.build} --target profile_flatten)")
     settings = " ".join(f"{k}={v}" for k, v in sorted(os.environ.items()) if k.startswith("PROFILE_"))
     print(f"# settings: {settings or 'the defaults'}")
-    print(f"{'pair':<28} {'relaxation':>10} {'outer Newton steps':>20} {'energy':>12} {'seconds':>8}")
-    sums = [0, 0, 0.0]
+    print(f"{'pair':<28} {'per-disk':>8} {'relaxation':>10} {'outer Newton steps':>20} {'energy':>12} {'seconds':>8}")
+    sums = [0, 0, 0, 0.0]
     with tempfile.TemporaryDirectory() as folder:
         for name, a, b, landmarks in pairs(args.meshes, folder):
             if args.only and name not in args.only and name.split()[0] not in args.only:
                 continue
-            relaxation, steps, energy, seconds, stop = run(profile, a, b, landmarks)
+            per_disk, relaxation, steps, energy, seconds, stop = run(profile, a, b, landmarks)
             outer = "+".join(map(str, steps))
-            print(f"{name:<28} {relaxation:>10} {outer:>20} {energy:>12.6f} {seconds:>8.2f} {stop}", flush=True)
-            sums[0] += relaxation
-            sums[1] += sum(steps)
-            sums[2] += seconds
-    print(f"{'sum':<28} {sums[0]:>10} {sums[1]:>20} {'':>12} {sums[2]:>8.2f}")
+            print(f"{name:<28} {per_disk:>8} {relaxation:>10} {outer:>20} {energy:>12.6f} {seconds:>8.2f} {stop}", flush=True)
+            sums[0] += per_disk
+            sums[1] += relaxation
+            sums[2] += sum(steps)
+            sums[3] += seconds
+    print(f"{'sum':<28} {sums[0]:>8} {sums[1]:>10} {sums[2]:>20} {'':>12} {sums[3]:>8.2f}")
 
 
 if __name__ == "__main__":

@@ -131,13 +131,16 @@ struct FaceDerivatives {
   std::vector<Mat6> h;
 };
 
-FaceDerivatives face_derivatives(const std::vector<Face>& faces, const Eigen::MatrixXd& X) {
+/// With `proxy`, each face's Hessian is its reweighted proxy's (symmetric_dirichlet_proxy_derivatives).
+FaceDerivatives face_derivatives(const std::vector<Face>& faces, const Eigen::MatrixXd& X, bool proxy) {
   const auto nf = static_cast<Eigen::Index>(faces.size());
   FaceDerivatives d{.g = std::vector<Vec6>(faces.size()), .h = std::vector<Mat6>(faces.size())};
 #pragma omp parallel for schedule(static) if (nf > kParallelFaces)
   for (Eigen::Index f = 0; f < nf; ++f) {
     const Face& face = faces[static_cast<size_t>(f)];
-    const SymmetricDirichletDerivatives dj = symmetric_dirichlet_derivatives(face.D * corners(face, X));
+    const FaceJacobian j = face.D * corners(face, X);
+    const SymmetricDirichletDerivatives dj =
+        proxy ? symmetric_dirichlet_proxy_derivatives(j) : symmetric_dirichlet_derivatives(j);
     d.g[static_cast<size_t>(f)] = face.w * face.D.transpose() * dj.gradient;
     d.h[static_cast<size_t>(f)] = face.w * face.D.transpose() * dj.hessian * face.D;
   }
@@ -329,8 +332,9 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
   SparseCholesky& cholesky = shared_cholesky != nullptr ? *shared_cholesky : own_cholesky;
   if (!cholesky.has_pattern_of(pattern.A)) cholesky.analyze(pattern.A);
   std::vector<OwnSolve> own = own_solves(terms, faces, var, 2 * n);
+  bool proxy = options.proxy_while_decrease > 0;
   for (int iter = 0; iter < options.max_iterations; ++iter) {
-    const FaceDerivatives d = face_derivatives(faces, res.U);
+    const FaceDerivatives d = face_derivatives(faces, res.U, proxy);
     Eigen::VectorXd g;
     newton_system(d, 0, var, nullptr, pattern, g);
     if (!cholesky.factorize(pattern.A)) break;
@@ -355,11 +359,20 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
       e = energy(faces, trial);
       if (e <= res.energy + 1e-4 * step * slope) break;
     }
-    if (!(e < res.energy)) break;
+    if (!(e < res.energy)) {
+      if (!proxy) break;
+      proxy = false;  // no progress along the proxy's direction: projected Newton from here
+      continue;
+    }
     const double before = res.energy;
     res.U = std::move(trial);
     res.energy = e;
     ++res.iterations;
+    if (proxy) {
+      ++res.proxy_steps;
+      proxy = before - e >= options.proxy_while_decrease * before;
+      continue;
+    }
     const bool shortened_by_flips = flip_limit < 1;
     if (options.only_full_steps_stop && shortened_by_flips) continue;
     if (before - e < options.relative_decrease * before) break;

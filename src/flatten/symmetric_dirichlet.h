@@ -18,6 +18,12 @@ struct SymmetricDirichletOptions {
   /// face flips lowers E little because that face is nearly crushed, not because E is near its minimum: such a
   /// step does not end the minimisation (max_iterations still bounds it).
   bool only_full_steps_stop = false;
+  /// Steps along the reweighted proxy's direction (symmetric_dirichlet_proxy_derivatives) instead of projected
+  /// Newton's while each lowers E by at least this fraction of it; from the first that lowers it less (or fails to
+  /// lower it), projected Newton. A proxy step never ends the minimisation. 0: projected Newton throughout.
+  /// From a crushed start a proxy step moves a face most of the way to its rest shape where projected Newton
+  /// grows its small singular value by a third (docs/algorithm.md, "Reweighted proxy steps").
+  double proxy_while_decrease = 0;
 };
 
 /// Result of minimize_symmetric_dirichlet.
@@ -25,7 +31,8 @@ struct SymmetricDirichletResult {
   Eigen::MatrixXd U;        ///< #V (or #slots) by 2 positions, every face positively oriented, fixed ones unchanged
   double energy_start = 0;  ///< E at the given positions
   double energy = 0;        ///< E at U
-  int iterations = 0;       ///< Newton steps taken
+  int iterations = 0;       ///< steps taken (proxy steps included)
+  int proxy_steps = 0;      ///< of which along the reweighted proxy's direction
 };
 
 /// One mesh's part of a symmetric Dirichlet energy over shared unknowns X (#slots by 2): several meshes whose
@@ -58,13 +65,13 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
 
 /// Lowers E(U) = sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4), J_f the Jacobian of face f (JacobianOperator), by
 /// projected Newton (every face's 4 by 4 Hessian in J clamped to its positive semidefinite part, Teran et al.
-/// 2005): each step is cut to 0.9 of the largest step that keeps every face's determinant positive (the roots of
-/// det(J + a dJ), a quadratic in a) and then backtracked until Armijo's condition holds. E is infinite at a
-/// flipped or degenerate face, so no step ever flips one. The vertices with fixed[v] != 0 do not move.
-/// \param op, F the mesh's Jacobian operator and #F by 3 faces
-/// \param fixed #V flags (boundary and isolated vertices)
-/// \param U0 #V by 2 positions with every face positively oriented
-/// \throw InvalidInputError if sizes disagree or a face of U0 is not positively oriented.
+/// 2005), after options.proxy_while_decrease's proxy steps if any (each face's Hessian replaced by its reweighted
+/// proxy's: the same gradient, a positive definite matrix): each step is cut to 0.9 of the largest step that keeps
+/// every face's determinant positive (the roots of det(J + a dJ), a quadratic in a) and then backtracked until Armijo's
+/// condition holds. E is infinite at a flipped or degenerate face, so no step ever flips one. The vertices with
+/// fixed[v] != 0 do not move. \param op, F the mesh's Jacobian operator and #F by 3 faces \param fixed #V flags
+/// (boundary and isolated vertices) \param U0 #V by 2 positions with every face positively oriented \throw
+/// InvalidInputError if sizes disagree or a face of U0 is not positively oriented.
 SymmetricDirichletResult minimize_symmetric_dirichlet(const JacobianOperator& op, const Eigen::MatrixXi& F,
                                                       const std::vector<char>& fixed, const Eigen::MatrixXd& U0,
                                                       const SymmetricDirichletOptions& options = {});

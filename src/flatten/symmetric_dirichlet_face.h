@@ -32,4 +32,14 @@ struct SymmetricDirichletDerivatives {
 /// \pre det J > 0 (the caller keeps every face positively oriented).
 SymmetricDirichletDerivatives symmetric_dirichlet_derivatives(const FaceJacobian& j);
 
+/// Gradient of psi at j and the Hessian of its reweighted quadratic proxy (after Rabinovich, Poranne, Panozzo and
+/// Sorkine-Hornung, "Scalable Locally Injective Mappings", 2017): with J = U diag(s1, s2) V^T, R = U V^T and
+/// W = V diag(w_1, w_2) V^T,
+///   q(K) = |(K - R) W|^2,   w_i^2 = psi_i / (2 (s_i - 1)) = (s_i + 1)(s_i^2 + 1) / s_i^3   (4 at s_i = 1),
+/// whose gradient at K = J is psi's and whose Hessian, K -> 2 K V diag(w_i^2) V^T on each row of K, is positive
+/// definite. Where projected Newton grows a crushed face's small singular value s by a third per step (psi ~ s^-2),
+/// the proxy's step takes a face alone to R in one: -H^-1 grad = -U diag(s_i - 1) V^T.
+/// \pre det J > 0.
+SymmetricDirichletDerivatives symmetric_dirichlet_proxy_derivatives(const FaceJacobian& j);
+
 }  // namespace liftmap

@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -97,6 +98,74 @@ TEST(flatten_symmetric_dirichlet_face, ProjectedHessianMatchesANumericalProjecti
     if (eig.eigenvalues().minCoeff() < 1e-9 * H.norm()) ++clamped;
   }
   EXPECT_GT(clamped, 0) << "no Jacobian had a negative twist eigenvalue: the clamp went untested";
+}
+
+/// J = U diag(s) V^T with det U = det V = 1, by a numerical SVD (det J > 0).
+struct Polar {
+  Eigen::Matrix2d U, V;
+  Eigen::Vector2d s;
+};
+
+Polar polar(const FaceJacobian& j) {
+  Eigen::Matrix2d J;
+  J << j(0), j(1), j(2), j(3);
+  const Eigen::JacobiSVD<Eigen::Matrix2d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Polar p{.U = svd.matrixU(), .V = svd.matrixV(), .s = svd.singularValues()};
+  if (p.U.determinant() < 0) {
+    p.U.col(1) *= -1;
+    p.V.col(1) *= -1;
+  }
+  return p;
+}
+
+Eigen::Vector4d row_major(const Eigen::Matrix2d& M) { return {M(0, 0), M(0, 1), M(1, 0), M(1, 1)}; }
+
+// The proxy q(K) = |(K - R) W|^2 built here from its definition (R = U V^T, W = V diag(w) V^T, w_i^2 =
+// psi_i / (2 (s_i - 1))): its gradient at J is psi's (by differences of psi), its Hessian is q's (the quadratic form
+// 2 |dK W|^2 along random directions), positive definite, and bitwise the gradient of symmetric_dirichlet_derivatives.
+TEST(flatten_symmetric_dirichlet_face, ProxyHasPsisGradientAndAPositiveDefiniteHessian) {
+  std::mt19937 rng(9);
+  std::normal_distribution<double> n01;
+  for (const FaceJacobian& j : jacobians()) {
+    const SymmetricDirichletDerivatives q = symmetric_dirichlet_proxy_derivatives(j);
+    EXPECT_EQ(q.gradient, symmetric_dirichlet_derivatives(j).gradient);
+    const Eigen::Vector4d fd = gradient_by_differences(j, 1e-6);
+    EXPECT_LT((q.gradient - fd).norm(), 1e-5 * (1 + fd.norm())) << j.transpose();
+    const Polar p = polar(j);
+    Eigen::Vector2d w;
+    for (int i = 0; i < 2; ++i) {
+      const double s = p.s(i), psi = 2 * s - 2 / (s * s * s);
+      w(i) = std::abs(s - 1) < 1e-6 ? 2 : std::sqrt(psi / (2 * (s - 1)));
+    }
+    const Eigen::Matrix2d W = p.V * w.asDiagonal() * p.V.transpose();
+    Eigen::Matrix2d J;
+    J << j(0), j(1), j(2), j(3);
+    const Eigen::Vector4d g_q = row_major(2 * (J - p.U * p.V.transpose()) * W * W.transpose());
+    EXPECT_LT((q.gradient - g_q).norm(), 1e-9 * (1 + g_q.norm())) << j.transpose();
+    for (int k = 0; k < 4; ++k) {
+      Eigen::Matrix2d dK;
+      dK << n01(rng), n01(rng), n01(rng), n01(rng);
+      const double form = row_major(dK).dot(q.hessian * row_major(dK)), ref = 2 * (dK * W).squaredNorm();
+      EXPECT_NEAR(form, ref, 1e-9 * ref) << j.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(q.hessian);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0) << j.transpose();
+  }
+}
+
+// A face alone: the proxy's step J - H^-1 grad lands on the rotation of J's polar decomposition, however crushed J is
+// (projected Newton's step would grow a crushed singular value by a third).
+TEST(flatten_symmetric_dirichlet_face, ProxyStepTakesALoneFaceToItsRotation) {
+  std::vector<FaceJacobian> js = jacobians();
+  js.emplace_back(1, 0, 0, 1e-4);
+  js.emplace_back(0.8 * std::cos(0.3), -1e-3 * std::sin(0.3), 0.8 * std::sin(0.3), 1e-3 * std::cos(0.3));
+  for (const FaceJacobian& j : js) {
+    const SymmetricDirichletDerivatives q = symmetric_dirichlet_proxy_derivatives(j);
+    const Eigen::Vector4d stepped = j - q.hessian.ldlt().solve(q.gradient);
+    const Polar p = polar(j);
+    const Eigen::Vector4d R = row_major(p.U * p.V.transpose());
+    EXPECT_LT((stepped - R).norm(), 1e-9) << j.transpose();
+  }
 }
 
 }  // namespace
