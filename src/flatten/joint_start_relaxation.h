@@ -27,10 +27,8 @@ struct JointStartRelaxationOptions {
   /// crushed faces crawls through such steps before E falls by orders of magnitude). Each disk's own unknowns are
   /// solved for from its own faces (SymmetricDirichletTerm::own_solve), so two identical disks stay bitwise
   /// identical: a mesh mapped onto a copy of itself scaled by a power of two is the identity to rounding.
-  /// The first steps follow the reweighted proxy while each halves E (SymmetricDirichletOptions::proxy_while_decrease):
-  /// from the disks' starts its first step alone lowers E by a factor of 2-4 where projected Newton takes ten.
-  SymmetricDirichletOptions newton{
-      .max_iterations = 300, .relative_decrease = 1e-3, .only_full_steps_stop = true, .proxy_while_decrease = 0.5};
+  /// Projected Newton throughout, as for the per-disk pre-optimisation (JointFlattenOptions::start_optimization).
+  SymmetricDirichletOptions newton{.max_iterations = 300, .relative_decrease = 1e-3, .only_full_steps_stop = true};
   /// w_g: the ghost faces' weight, relative to the disks' faces. Their rest shape is their placement at the start
   /// (place_ghost_vertices); they hold no energy of the map and are re-placed before every subproblem.
   double ghost_weight = 0.1;

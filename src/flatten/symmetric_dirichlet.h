@@ -65,13 +65,15 @@ SymmetricDirichletResult minimize_symmetric_dirichlet(const std::vector<Symmetri
 
 /// Lowers E(U) = sum_f area_f (|J_f|^2 + |J_f^-1|^2 - 4), J_f the Jacobian of face f (JacobianOperator), by
 /// projected Newton (every face's 4 by 4 Hessian in J clamped to its positive semidefinite part, Teran et al.
-/// 2005), after options.proxy_while_decrease's proxy steps if any (each face's Hessian replaced by its reweighted
-/// proxy's: the same gradient, a positive definite matrix): each step is cut to 0.9 of the largest step that keeps
-/// every face's determinant positive (the roots of det(J + a dJ), a quadratic in a) and then backtracked until Armijo's
-/// condition holds. E is infinite at a flipped or degenerate face, so no step ever flips one. The vertices with
-/// fixed[v] != 0 do not move. \param op, F the mesh's Jacobian operator and #F by 3 faces \param fixed #V flags
-/// (boundary and isolated vertices) \param U0 #V by 2 positions with every face positively oriented \throw
-/// InvalidInputError if sizes disagree or a face of U0 is not positively oriented.
+/// 2005), after the reweighted proxy's steps that options.proxy_while_decrease asks for (each face's Hessian
+/// replaced by its proxy's: the same gradient, a positive definite matrix). Each step is cut to 0.9 of the largest
+/// step that keeps every face's determinant positive (the roots of det(J + a dJ), a quadratic in a) and then
+/// backtracked until Armijo's condition holds. E is infinite at a flipped or degenerate face, so no step ever flips
+/// one. The vertices with fixed[v] != 0 do not move.
+/// \param op, F the mesh's Jacobian operator and #F by 3 faces
+/// \param fixed #V flags (boundary and isolated vertices)
+/// \param U0 #V by 2 positions with every face positively oriented
+/// \throw InvalidInputError if sizes disagree or a face of U0 is not positively oriented.
 SymmetricDirichletResult minimize_symmetric_dirichlet(const JacobianOperator& op, const Eigen::MatrixXi& F,
                                                       const std::vector<char>& fixed, const Eigen::MatrixXd& U0,
                                                       const SymmetricDirichletOptions& options = {});
