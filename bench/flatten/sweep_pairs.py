@@ -6,9 +6,9 @@
 Runs BUILD/bench/flatten/profile_flatten on the three example pairs with their landmarks and on eight pairs of the
 meshes from `make meshes` with 5 random vertex landmarks each (seeds 100-107, the same on every machine), one after
 the other, with this process's environment: set PROFILE_* variables (profile_flatten.cpp reads them) to compare a
-setting against the default. Prints per pair the start's per-disk pre-optimisation and joint relaxation steps, the outer iterations' Newton steps,
-the final energy and the flattening's seconds, then the sums. One run each: the seconds are indicative only; judge
-speed side by side (docs/performance.md says how).
+setting against the default. Prints per pair the start's per-disk pre-optimisation and joint relaxation steps, the
+outer iterations' Newton steps, the final energy and the flattening's seconds, then the sums. One run each: the
+seconds are indicative only; judge speed side by side (docs/performance.md says how).
 """
 
 import argparse
@@ -48,7 +48,8 @@ def pairs(meshes, folder):
 
 
 def run(profile, a, b, landmarks):
-    """One profile_flatten run: (per-disk steps, relaxation steps, outer Newton steps per iteration, energy, seconds, stop reason)."""
+    """One profile_flatten run: (per-disk steps, relaxation steps, outer Newton steps per iteration, energy, seconds,
+    stop reason)."""
     text = subprocess.run([profile, a, b, landmarks], capture_output=True, text=True, check=True).stdout
     steps = [int(s) for i, s in re.findall(r"^iterate (\d+): .*Newton steps (\d+)", text, re.M) if int(i) > 0]
     energy = re.findall(r"^iterate \d+: energy (\S+)", text, re.M)[-1]
@@ -77,7 +78,8 @@ def main():
                 continue
             per_disk, relaxation, steps, energy, seconds, stop = run(profile, a, b, landmarks)
             outer = "+".join(map(str, steps))
-            print(f"{name:<28} {per_disk:>8} {relaxation:>10} {outer:>20} {energy:>12.6f} {seconds:>8.2f} {stop}", flush=True)
+            print(f"{name:<28} {per_disk:>8} {relaxation:>10} {outer:>20} {energy:>12.6f} {seconds:>8.2f} {stop}",
+                  flush=True)
             sums[0] += per_disk
             sums[1] += relaxation
             sums[2] += sum(steps)
