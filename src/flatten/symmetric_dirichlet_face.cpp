@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -38,10 +39,15 @@ SingularValues singular_values(const FaceJacobian& j) {
   return out;
 }
 
-/// d psi / dj = U diag(psi_1, psi_2) V^T, psi_i = 2 s_i - 2 s_i^-3.
-Eigen::Vector4d gradient(const SingularValues& sv) {
+/// The scaling modes vec(U diag(1, 0) V^T) and vec(U diag(0, 1) V^T).
+std::array<Eigen::Vector4d, 2> scaling_modes(const SingularValues& sv) {
+  return {mode(sv.U, sv.V, 1, 0, 0, 0), mode(sv.U, sv.V, 0, 0, 0, 1)};
+}
+
+/// d psi / dj = U diag(psi_1, psi_2) V^T = psi_1 d1 + psi_2 d2, psi_i = 2 s_i - 2 s_i^-3 (d: scaling_modes).
+Eigen::Vector4d gradient(const SingularValues& sv, const std::array<Eigen::Vector4d, 2>& d) {
   const double psi1 = 2 * sv.s1 - 2 / (sv.s1 * sv.s1 * sv.s1), psi2 = 2 * sv.s2 - 2 / (sv.s2 * sv.s2 * sv.s2);
-  return psi1 * mode(sv.U, sv.V, 1, 0, 0, 0) + psi2 * mode(sv.U, sv.V, 0, 0, 0, 1);
+  return psi1 * d[0] + psi2 * d[1];
 }
 
 }  // namespace
@@ -62,10 +68,11 @@ SymmetricDirichletDerivatives symmetric_dirichlet_derivatives(const FaceJacobian
   const double flip = 2 + 2 * (s1 * s1 + s1 * s2 + s2 * s2) / p3;
   const double twist = std::max(0.0, 2 - 2 * (s1 * s1 - s1 * s2 + s2 * s2) / p3);
   const double r = std::sqrt(0.5);
-  const Eigen::Vector4d d1 = mode(U, V, 1, 0, 0, 0), d2 = mode(U, V, 0, 0, 0, 1);
+  const std::array<Eigen::Vector4d, 2> d = scaling_modes(sv);
+  const Eigen::Vector4d &d1 = d[0], &d2 = d[1];
   const Eigen::Vector4d l = mode(U, V, 0, r, r, 0), t = mode(U, V, 0, -r, r, 0);
   SymmetricDirichletDerivatives out;
-  out.gradient = gradient(sv);
+  out.gradient = gradient(sv, d);
   out.hessian = scale1 * d1 * d1.transpose() + scale2 * d2 * d2.transpose() + flip * l * l.transpose() +
                 twist * t * t.transpose();
   return out;
@@ -76,7 +83,7 @@ SymmetricDirichletDerivatives symmetric_dirichlet_proxy_derivatives(const FaceJa
   const auto weight = [](double s) { return (s + 1) * (s * s + 1) / (s * s * s); };  // w^2
   const Eigen::Matrix2d M = 2 * sv.V * Eigen::Vector2d(weight(sv.s1), weight(sv.s2)).asDiagonal() * sv.V.transpose();
   SymmetricDirichletDerivatives out;
-  out.gradient = gradient(sv);
+  out.gradient = gradient(sv, scaling_modes(sv));
   out.hessian.setZero();  // K -> K M on each row of K: the rows (J00, J01) and (J10, J11) do not couple
   out.hessian.topLeftCorner<2, 2>() = M;
   out.hessian.bottomRightCorner<2, 2>() = M;
